@@ -1,0 +1,52 @@
+#pragma once
+// Rigid 2D transforms (SE(2)). A Pose2 maps points from its local frame into
+// the parent frame: p_parent = R(theta) * p_local + (x, y).
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+
+namespace dsswarm {
+
+// Wraps an angle to (-pi, pi].
+inline double normalize_angle(double a) {
+  a = std::remainder(a, 2.0 * std::numbers::pi);  // [-pi, pi]
+  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
+}
+
+struct Pose2 {
+  double x = 0.0;
+  double y = 0.0;
+  double theta = 0.0;  // radians, kept in (-pi, pi] by every operation
+
+  Pose2() = default;
+  Pose2(double x_, double y_, double theta_) : x(x_), y(y_), theta(normalize_angle(theta_)) {}
+
+  // Composition: (*this) ⊕ other, i.e. `other` expressed in this pose's frame.
+  Pose2 operator*(const Pose2& other) const {
+    const double c = std::cos(theta), s = std::sin(theta);
+    return {x + c * other.x - s * other.y, y + s * other.x + c * other.y, theta + other.theta};
+  }
+
+  Pose2 inverse() const {
+    const double c = std::cos(theta), s = std::sin(theta);
+    return {-(c * x + s * y), s * x - c * y, -theta};
+  }
+
+  Eigen::Vector2d operator*(const Eigen::Vector2d& p) const {
+    const double c = std::cos(theta), s = std::sin(theta);
+    return {x + c * p.x() - s * p.y(), y + s * p.x() + c * p.y()};
+  }
+
+  Eigen::Vector2d translation() const { return {x, y}; }
+};
+
+// Motion from a to b expressed in a's frame: a⁻¹ ⊕ b.
+inline Pose2 between(const Pose2& a, const Pose2& b) { return a.inverse() * b; }
+
+// Linear interpolation of translation, shortest-arc interpolation of heading; t in [0, 1].
+inline Pose2 interpolate(const Pose2& a, const Pose2& b, double t) {
+  return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y),
+          a.theta + t * normalize_angle(b.theta - a.theta)};
+}
+
+}  // namespace dsswarm
