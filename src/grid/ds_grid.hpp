@@ -1,0 +1,100 @@
+#pragma once
+// An unbounded 2D grid of Dempster–Shafer cells at one resolution.
+//
+// Cells live in square tiles of kTileSize² allocated on first write, so the
+// map grows in any direction from the start and unexplored space costs one
+// null pointer per tile. Tiles are found through a dense table of pointers
+// that is re-centred and doubled when a write falls outside it: a lookup is
+// two array reads, which matters because the matcher does millions per second.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "grid/ds_mass.hpp"
+#include "grid/grid_raster.hpp"
+
+namespace dsswarm {
+
+struct CellIndex {
+  std::int32_t x = 0;
+  std::int32_t y = 0;
+  bool operator==(const CellIndex&) const = default;
+};
+
+class DsGrid {
+ public:
+  static constexpr int kTileBits = 6;
+  static constexpr int kTileSize = 1 << kTileBits;  // 64 cells: 3.2 m at 5 cm
+  static constexpr int kTileCells = kTileSize * kTileSize;
+
+  explicit DsGrid(double resolution = 0.05);
+
+  double resolution() const { return resolution_; }
+
+  // World point -> index of the cell containing it. Cell (0,0) spans [0, res)².
+  CellIndex cell_of(const Eigen::Vector2d& p) const {
+    return {static_cast<std::int32_t>(std::floor(p.x() * inv_resolution_)),
+            static_cast<std::int32_t>(std::floor(p.y() * inv_resolution_))};
+  }
+  Eigen::Vector2d cell_center(CellIndex c) const {
+    return {(c.x + 0.5) * resolution_, (c.y + 0.5) * resolution_};
+  }
+
+  // Read access; cells never written are vacuous (all unknown).
+  DsMass at(CellIndex c) const {
+    const Tile* t = find_tile(c);
+    return t ? t->cells[local_index(c)] : DsMass::vacuous();
+  }
+  // Occupancy in [0, 1] (unknown counts 0.5): the value the matcher reads.
+  float occupancy(CellIndex c) const { return at(c).occupancy(); }
+
+  // Write access: allocates the tile if needed.
+  DsMass& mutable_at(CellIndex c) { return get_or_create_tile(c).cells[local_index(c)]; }
+
+  std::size_t tiles_allocated() const { return tiles_.size(); }
+  std::size_t cells_allocated() const { return tiles_.size() * kTileCells; }
+  // Heap bytes held by the grid (tiles plus the pointer table), for memory reports.
+  std::size_t memory_bytes() const;
+
+  // Bounding box of allocated tiles, in cells [min, max) — empty grid gives min == max.
+  void bounds(CellIndex& min, CellIndex& max) const;
+
+  // Dense copy of the region that holds any evidence (plus `margin` cells).
+  GridRaster to_raster(int margin = 2) const;
+
+  // Visits every allocated tile: f(tile_origin_cell, const DsMass* cells[kTileCells]).
+  template <typename F>
+  void for_each_tile(F&& f) const {
+    for (const auto& t : tiles_) f(CellIndex{t->origin.x, t->origin.y}, t->cells.data());
+  }
+
+ private:
+  struct Tile {
+    CellIndex origin;  // index of its lower-left cell
+    std::array<DsMass, kTileCells> cells{};
+  };
+
+  static int local_index(CellIndex c) {
+    return ((c.y & (kTileSize - 1)) << kTileBits) | (c.x & (kTileSize - 1));
+  }
+  const Tile* find_tile(CellIndex c) const {
+    const std::int32_t tx = (c.x >> kTileBits) - table_origin_.x;
+    const std::int32_t ty = (c.y >> kTileBits) - table_origin_.y;
+    if (tx < 0 || ty < 0 || tx >= table_width_ || ty >= table_height_) return nullptr;
+    return table_[static_cast<std::size_t>(ty) * table_width_ + tx];
+  }
+  Tile& get_or_create_tile(CellIndex c);
+  void grow_table_to_include(std::int32_t tx, std::int32_t ty);
+
+  double resolution_;
+  double inv_resolution_;
+  std::vector<std::unique_ptr<Tile>> tiles_;  // owning storage
+  std::vector<Tile*> table_;                  // dense lookup, row-major over tile coords
+  CellIndex table_origin_{0, 0};              // tile coords of table_[0]
+  std::int32_t table_width_ = 0;
+  std::int32_t table_height_ = 0;
+};
+
+}  // namespace dsswarm

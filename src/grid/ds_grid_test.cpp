@@ -1,0 +1,62 @@
+#include "grid/ds_grid.hpp"
+
+#include <gtest/gtest.h>
+
+namespace dsswarm {
+namespace {
+
+TEST(DsGrid, UnwrittenCellsAreUnknownAndAllocateNothing) {
+  const DsGrid g(0.05);
+  EXPECT_FLOAT_EQ(g.at({123, -456}).unknown(), 1.0f);
+  EXPECT_EQ(g.tiles_allocated(), 0u);
+}
+
+TEST(DsGrid, GrowsInEveryDirection) {
+  DsGrid g(0.05);
+  const CellIndex far[] = {{0, 0}, {-5000, 3}, {7000, -9000}, {-70000, 80000}, {12, 12}};
+  float v = 0.1f;
+  for (const CellIndex& c : far) {
+    g.mutable_at(c) = {v, 0.0f};
+    v += 0.1f;
+  }
+  v = 0.1f;
+  for (const CellIndex& c : far) {
+    EXPECT_FLOAT_EQ(g.at(c).occupied, v);
+    v += 0.1f;
+  }
+  EXPECT_EQ(g.tiles_allocated(), 4u);  // (0,0) and (12,12) share a tile
+  // Neighbours in the same tile are untouched.
+  EXPECT_FLOAT_EQ(g.at({-5001, 3}).occupied, 0.0f);
+}
+
+TEST(DsGrid, CellOfHandlesNegativeCoordinates) {
+  const DsGrid g(0.1);
+  EXPECT_EQ(g.cell_of({0.05, 0.05}), (CellIndex{0, 0}));
+  EXPECT_EQ(g.cell_of({-0.05, -0.15}), (CellIndex{-1, -2}));
+  const Eigen::Vector2d c = g.cell_center({-1, 2});
+  EXPECT_NEAR(c.x(), -0.05, 1e-12);
+  EXPECT_NEAR(c.y(), 0.25, 1e-12);
+}
+
+TEST(DsGrid, CellsAreCompact) {
+  DsGrid g(0.05);
+  for (int i = 0; i < 20; ++i) g.mutable_at({i * 64, 0}) = {0.5f, 0.0f};
+  const double bytes_per_cell = static_cast<double>(g.memory_bytes()) / static_cast<double>(g.cells_allocated());
+  EXPECT_LT(bytes_per_cell, 8.2);  // two floats per cell plus a little table overhead
+}
+
+TEST(DsGrid, RasterCoversEvidenceWithRowZeroAtLowestY) {
+  DsGrid g(0.5);
+  g.mutable_at({-3, -2}) = {0.9f, 0.0f};
+  g.mutable_at({4, 5}) = {0.0f, 0.8f};
+  const GridRaster r = g.to_raster(1);
+  EXPECT_EQ(r.width, 4 + 3 + 1 + 2);
+  EXPECT_EQ(r.height, 5 + 2 + 1 + 2);
+  EXPECT_NEAR(r.origin.x(), -2.0, 1e-12);  // (-3 - 1) * 0.5
+  EXPECT_NEAR(r.origin.y(), -1.5, 1e-12);
+  EXPECT_FLOAT_EQ(r.at(1, 1).occupied, 0.9f);
+  EXPECT_FLOAT_EQ(r.at(r.width - 2, r.height - 2).free, 0.8f);
+}
+
+}  // namespace
+}  // namespace dsswarm

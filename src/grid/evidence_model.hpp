@@ -1,0 +1,46 @@
+#pragma once
+// How one laser beam turns into Dempster–Shafer evidence.
+//
+// A beam that ends in a cell says "occupied" with mass `hit_occupied` (the rest
+// stays unknown: the hit may be noise, or the cell only partly filled). Cells
+// the beam passes through get "free" with mass `pass_free`. Beams with no
+// return (max range, NaN) give no evidence at all.
+//
+// After each combination a cell keeps at least `min_unknown` of unknown mass
+// (Shafer discounting). Without it, repeated hits drive a cell to certainty,
+// and Dempster's rule then ignores any later contrary evidence forever: a cell
+// certainly occupied can never be revised, however often it is seen free.
+#include "common/errors.hpp"
+#include "grid/ds_mass.hpp"
+
+namespace dsswarm {
+
+struct EvidenceModel {
+  float hit_occupied = 0.35f;  // mass on {occupied} for the cell a beam ends in
+  float pass_free = 0.2f;      // mass on {free} for each cell a beam passes through
+  float min_unknown = 0.02f;   // floor on a cell's unknown mass after combination
+
+  DsMass hit() const { return {hit_occupied, 0.0f}; }
+  DsMass pass() const { return {0.0f, pass_free}; }
+
+  // Dempster combination followed by discounting to keep `min_unknown`.
+  DsMass update(const DsMass& cell, const DsMass& evidence) const {
+    DsMass m = combine(cell, evidence);
+    const float u = m.unknown();
+    if (u < min_unknown) {
+      const float scale = (1.0f - min_unknown) / (m.occupied + m.free);
+      m.occupied *= scale;
+      m.free *= scale;
+    }
+    return m;
+  }
+
+  void validate() const {
+    auto in_open_unit = [](float v) { return v > 0.0f && v < 1.0f; };
+    if (!in_open_unit(hit_occupied)) throw ConfigError("evidence.hit_occupied must be in (0, 1)");
+    if (!in_open_unit(pass_free)) throw ConfigError("evidence.pass_free must be in (0, 1)");
+    if (!(min_unknown >= 0.0f && min_unknown < 0.5f)) throw ConfigError("evidence.min_unknown must be in [0, 0.5)");
+  }
+};
+
+}  // namespace dsswarm

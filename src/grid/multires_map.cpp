@@ -1,0 +1,83 @@
+#include "grid/multires_map.hpp"
+
+#include <string>
+
+#include "grid/ray_traversal.hpp"
+
+namespace dsswarm {
+
+void MapConfig::validate() const {
+  if (!(resolution >= 0.005 && resolution <= 2.0)) throw ConfigError("map.resolution must be in [0.005, 2] m");
+  if (levels < 1 || levels > 6) throw ConfigError("map.levels must be in [1, 6]");
+  evidence.validate();
+}
+
+MultiResMap::MultiResMap(const MapConfig& config) : config_(config) {
+  config_.validate();
+  double res = config_.resolution;
+  for (int i = 0; i < config_.levels; ++i, res *= 2.0) grids_.emplace_back(res);
+}
+
+void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_base,
+                              const std::vector<ScanPoint>& points) {
+  const Pose2 laser = robot_pose * laser_in_base;
+  const Eigen::Vector2d origin = laser.translation();
+  std::vector<Eigen::Vector2d> hits;
+  hits.reserve(points.size());
+  for (const ScanPoint& p : points) hits.push_back(robot_pose * Eigen::Vector2d(p.x, p.y));
+
+  const EvidenceModel& ev = config_.evidence;
+  const DsMass pass = ev.pass(), hit = ev.hit();
+  for (std::size_t level = 0; level < grids_.size(); ++level) {
+    DsGrid& grid = grids_[level];
+    // Free evidence first, hits last: a cell that one beam ends in and a
+    // neighbouring grazing beam passes through keeps its hit for this scan.
+    // Coarse levels take hits only: a 20 cm cell holding a wall is also
+    // crossed by grazing beams, and free evidence would erode the very cells
+    // that guide the coarse search (see MapConfig::free_space_on_coarse_levels).
+    if (level == 0 || config_.free_space_on_coarse_levels) for (const Eigen::Vector2d& h : hits) {
+      traverse_ray(origin, h, grid.resolution(), [&](CellIndex c) {
+        DsMass& m = grid.mutable_at(c);
+        m = ev.update(m, pass);
+      });
+    }
+    const bool splat = level > 0 || config_.splat_fine_hits;
+    for (const Eigen::Vector2d& h : hits) {
+      if (!splat) {
+        DsMass& m = grid.mutable_at(grid.cell_of(h));
+        m = ev.update(m, hit);
+        continue;
+      }
+      // Spread the hit over the four nearest cells with bilinear weights. The
+      // scorer reads cells back with bilinear interpolation, so a hit seen
+      // through both is a tent centred exactly on the point: coarse cells no
+      // longer pull scans towards their centres (a bias of up to half a cell,
+      // the same for every wall of one orientation).
+      const double gx = h.x() / grid.resolution() - 0.5, gy = h.y() / grid.resolution() - 0.5;
+      const double fx = std::floor(gx), fy = std::floor(gy);
+      const auto x0 = static_cast<std::int32_t>(fx), y0 = static_cast<std::int32_t>(fy);
+      const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
+      const float weights[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
+      const CellIndex cells[4] = {{x0, y0}, {x0 + 1, y0}, {x0, y0 + 1}, {x0 + 1, y0 + 1}};
+      for (int k = 0; k < 4; ++k) {
+        if (weights[k] <= 0.0f) continue;
+        DsMass& m = grid.mutable_at(cells[k]);
+        m = ev.update(m, DsMass{hit.occupied * weights[k], 0.0f});
+      }
+    }
+  }
+}
+
+std::size_t MultiResMap::cells_allocated() const {
+  std::size_t n = 0;
+  for (const auto& g : grids_) n += g.cells_allocated();
+  return n;
+}
+
+std::size_t MultiResMap::memory_bytes() const {
+  std::size_t n = 0;
+  for (const auto& g : grids_) n += g.memory_bytes();
+  return n;
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,53 @@
+#pragma once
+// The robot's map: the same Dempster–Shafer evidence accumulated at several
+// resolutions (finest first, each level twice as coarse as the one before).
+// The finest level is the map users see; the coarser ones give the matcher a
+// wide, smooth basin so that it can recover from a poor prior before it
+// refines on the fine level (the multi-resolution idea of Hector SLAM).
+#include <vector>
+
+#include "geometry/pose2.hpp"
+#include "grid/ds_grid.hpp"
+#include "grid/evidence_model.hpp"
+#include "sensor/scan_points.hpp"
+
+namespace dsswarm {
+
+struct MapConfig {
+  double resolution = 0.05;  // metres per cell of the finest level
+  int levels = 3;            // 0.05 / 0.10 / 0.20 m by default
+  EvidenceModel evidence;
+  // Coarse levels serve only the matcher's first, rough placement. By default
+  // they record where obstacles were seen (hits only, no beam traversal): a
+  // wide, stable basin, and 3–4× less insertion work.
+  bool free_space_on_coarse_levels = false;
+  // Spread hits bilinearly over four cells on the finest level too (coarse
+  // levels always do; see insert_scan).
+  bool splat_fine_hits = false;
+
+  void validate() const;
+};
+
+class MultiResMap {
+ public:
+  explicit MultiResMap(const MapConfig& config = {});
+
+  const MapConfig& config() const { return config_; }
+  int levels() const { return static_cast<int>(grids_.size()); }
+  const DsGrid& level(int i) const { return grids_[static_cast<std::size_t>(i)]; }
+  const DsGrid& finest() const { return grids_.front(); }
+
+  // Adds the evidence of one scan: free along each beam from the laser to the
+  // hit, then occupied at the hit. `points` are in the robot base frame, as
+  // produced by scan_to_points(); `laser_in_base` is the mounting offset.
+  void insert_scan(const Pose2& robot_pose, const Pose2& laser_in_base, const std::vector<ScanPoint>& points);
+
+  std::size_t cells_allocated() const;
+  std::size_t memory_bytes() const;
+
+ private:
+  MapConfig config_;
+  std::vector<DsGrid> grids_;
+};
+
+}  // namespace dsswarm

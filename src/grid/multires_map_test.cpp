@@ -1,0 +1,45 @@
+#include "grid/multires_map.hpp"
+
+#include <gtest/gtest.h>
+
+namespace dsswarm {
+namespace {
+
+TEST(MultiResMap, LevelsDoubleInCellSize) {
+  const MultiResMap map(MapConfig{0.05, 3, {}, true, false});
+  ASSERT_EQ(map.levels(), 3);
+  EXPECT_DOUBLE_EQ(map.level(1).resolution(), 0.1);
+  EXPECT_DOUBLE_EQ(map.level(2).resolution(), 0.2);
+}
+
+TEST(MultiResMap, BeamMarksHitOccupiedAndPathFreeOnEveryLevel) {
+  MultiResMap map(MapConfig{0.05, 2, {}, true, false});
+  const std::vector<ScanPoint> pts = {{2.0f, 0.0f, 1.0f}};
+  map.insert_scan(Pose2(0.01, 0.01, 0.0), Pose2(), pts);
+  for (int l = 0; l < 2; ++l) {
+    const DsGrid& g = map.level(l);
+    // Coarse levels spread a hit over the four nearest cells.
+    EXPECT_GT(g.at(g.cell_of({2.01, 0.01})).occupied, l == 0 ? 0.3f : 0.05f) << "level " << l;
+    EXPECT_GT(g.at(g.cell_of({1.0, 0.01})).free, 0.1f) << "level " << l;  // free_space_on_coarse_levels
+    EXPECT_FLOAT_EQ(g.at(g.cell_of({1.0, 1.0})).unknown(), 1.0f);
+  }
+}
+
+TEST(MultiResMap, ScanIsPlacedByRobotPoseAndLaserOffset) {
+  MultiResMap map(MapConfig{0.05, 1, {}, true, false});
+  const std::vector<ScanPoint> pts = {{1.0f, 0.0f, 1.0f}};  // base frame
+  map.insert_scan(Pose2(5.0, 5.0, std::numbers::pi / 2), Pose2(0.2, 0.0, 0.0), pts);
+  const DsGrid& g = map.finest();
+  EXPECT_GT(g.at(g.cell_of({5.0, 6.0})).occupied, 0.3f);
+  // The beam starts at the laser (0.2 m ahead of the base): cells behind it stay unknown.
+  EXPECT_FLOAT_EQ(g.at(g.cell_of({5.0, 5.1})).unknown(), 1.0f);
+  EXPECT_GT(g.at(g.cell_of({5.0, 5.5})).free, 0.1f);
+}
+
+TEST(MultiResMap, RejectsBadConfig) {
+  EXPECT_THROW(MultiResMap(MapConfig{0.0, 3, {}, true, false}), ConfigError);
+  EXPECT_THROW(MultiResMap(MapConfig{0.05, 0, {}, true, false}), ConfigError);
+}
+
+}  // namespace
+}  // namespace dsswarm

@@ -1,0 +1,57 @@
+#pragma once
+// Monte-Carlo scan matcher (the chapter's §3.1, after vinySLAM).
+//
+// Random poses are drawn around the best pose so far; a better one becomes the
+// new centre and the search radius shrinks around it; a run of failures also
+// shrinks it. The search runs coarse-to-fine over the map's resolution levels,
+// each level starting from the previous level's answer and ending with a short
+// deterministic coordinate ascent, and stops after a fixed budget of pose
+// evaluations — so its cost per scan is bounded.
+#include <cstdint>
+
+#include "common/rng.hpp"
+#include "geometry/pose2.hpp"
+#include "grid/multires_map.hpp"
+#include "sensor/scan_points.hpp"
+
+namespace dsswarm {
+
+struct MatcherConfig {
+  int evaluations = 240;         // pose evaluations per scan, over all levels
+  double sigma_xy = 0.10;        // m: initial spread on the coarsest level
+  double sigma_theta = 0.05;     // rad: initial heading spread on the coarsest level
+  double shrink_on_success = 0.75;  // spread factor after each improvement
+  int patience = 10;             // failures in a row before the spread halves
+  double min_sigma_xy = 0.002;   // spreads never shrink below these
+  double min_sigma_theta = 0.0005;
+  // Evaluations per level kept for the final deterministic coordinate ascent.
+  int polish_evaluations = 36;
+  double polish_step_theta = 0.005;  // rad, first θ step on the finest level (doubles per level)
+  // Share of a cell's unknown mass that counts as occupancy when scoring
+  // (0: only evidence of obstacles scores; 0.5: pignistic occupancy).
+  float unknown_value = 0.0f;
+
+  void validate() const;
+};
+
+struct MatchResult {
+  Pose2 pose;
+  double score = 0.0;        // weighted mean occupancy on the finest level, [0, 1]
+  double prior_score = 0.0;  // same at the prior pose
+  int evaluations = 0;
+};
+
+class MonteCarloMatcher {
+ public:
+  explicit MonteCarloMatcher(const MatcherConfig& config = {}, std::uint64_t seed = 1);
+
+  MatchResult match(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
+
+  const MatcherConfig& config() const { return config_; }
+
+ private:
+  MatcherConfig config_;
+  Rng rng_;
+};
+
+}  // namespace dsswarm

@@ -1,0 +1,111 @@
+#include "matching/monte_carlo_matcher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "matching/scan_scorer.hpp"
+
+namespace dsswarm {
+namespace {
+
+// A small asymmetric room (L-shaped walls plus a pillar) and an exact ray caster.
+struct Segment {
+  Eigen::Vector2d a, b;
+};
+const std::vector<Segment> kRoom = {
+    {{-3, -2}, {6, -2}}, {{6, -2}, {6, 4}}, {{6, 4}, {1, 4}}, {{1, 4}, {1, 6}}, {{1, 6}, {-3, 6}},
+    {{-3, 6}, {-3, -2}}, {{2, 1}, {2.6, 1}}, {{2.6, 1}, {2.6, 1.4}}, {{2.6, 1.4}, {2, 1.4}}, {{2, 1.4}, {2, 1}}};
+
+// Walls sit off the cell grid (as real walls do): a wall exactly on a cell
+// boundary biases any grid map by half a cell.
+const Eigen::Vector2d kShift(0.0137, 0.0311);
+
+double cast(const Eigen::Vector2d& o, double angle) {
+  const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment& s : kRoom) {
+    const Eigen::Vector2d e = s.b - s.a;
+    const double den = d.x() * e.y() - d.y() * e.x();
+    if (std::abs(den) < 1e-12) continue;
+    const Eigen::Vector2d w = s.a + kShift - o;
+    const double t = (w.x() * e.y() - w.y() * e.x()) / den;
+    const double u = (w.x() * d.y() - w.y() * d.x()) / den;
+    if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
+  }
+  return best;
+}
+
+LaserScan scan_from(const Pose2& pose) {
+  LaserScan s;
+  s.angle_min = -std::numbers::pi / 2;
+  s.angle_increment = std::numbers::pi / 360;
+  s.range_max = 30;
+  for (int i = 0; i <= 360; ++i) s.ranges.push_back(static_cast<float>(cast(pose.translation(), pose.theta + s.beam_angle(i))));
+  return s;
+}
+
+MultiResMap map_from_views(const std::vector<Pose2>& views) {
+  MultiResMap map;
+  for (const Pose2& v : views) map.insert_scan(v, Pose2(), scan_to_points(scan_from(v)));
+  return map;
+}
+
+TEST(ScanScorer, TruePoseScoresHigherThanShiftedPose) {
+  const Pose2 truth(0.5, 0.5, 0.3);
+  const MultiResMap map = map_from_views({truth, Pose2(-1, 3, 2.0), Pose2(4, 0, -2.5)});
+  const auto pts = scan_to_points(scan_from(truth));
+  const double s_true = score_pose(map.finest(), pts, truth);
+  EXPECT_GT(s_true, score_pose(map.finest(), pts, Pose2(0.6, 0.5, 0.3)));
+  EXPECT_GT(s_true, score_pose(map.finest(), pts, Pose2(0.5, 0.5, 0.35)));
+  EXPECT_GT(s_true, 0.3);
+}
+
+TEST(MonteCarloMatcher, RecoversPoseFromOffsetPrior) {
+  const MultiResMap map = map_from_views({Pose2(0, 0, 0), Pose2(-1, 3, 2.0), Pose2(4, 0, -2.5), Pose2(3, 2, 1.0)});
+  const Pose2 truth(0.8, 0.9, 0.4);
+  const auto pts = scan_to_points(scan_from(truth));
+  MonteCarloMatcher matcher({}, 42);
+  int good = 0;
+  Rng rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose2 prior(truth.x + rng.uniform(-0.1, 0.1), truth.y + rng.uniform(-0.1, 0.1),
+                      truth.theta + rng.uniform(-0.05, 0.05));
+    const MatchResult r = matcher.match(map, pts, prior);
+    EXPECT_GE(r.score, r.prior_score - 1e-9);
+    EXPECT_LE(r.evaluations, matcher.config().evaluations);
+    std::printf("prior %.3f %.3f %.3f -> %.3f %.3f %.3f score %.3f prior %.3f\n", prior.x, prior.y, prior.theta, r.pose.x, r.pose.y, r.pose.theta, r.score, r.prior_score);
+    if (std::hypot(r.pose.x - truth.x, r.pose.y - truth.y) < 0.02 && std::abs(r.pose.theta - truth.theta) < 0.01)
+      ++good;
+  }
+  EXPECT_GE(good, 18);
+}
+
+TEST(MonteCarloMatcher, SameSeedSameResult) {
+  const MultiResMap map = map_from_views({Pose2(0, 0, 0), Pose2(3, 2, 1.0)});
+  const auto pts = scan_to_points(scan_from(Pose2(0.2, 0.1, 0.05)));
+  MonteCarloMatcher a({}, 7), b({}, 7);
+  const MatchResult ra = a.match(map, pts, Pose2()), rb = b.match(map, pts, Pose2());
+  EXPECT_EQ(ra.pose.x, rb.pose.x);
+  EXPECT_EQ(ra.pose.theta, rb.pose.theta);
+}
+
+TEST(MonteCarloMatcher, EmptyScanReturnsPrior) {
+  const MultiResMap map;
+  MonteCarloMatcher m;
+  const MatchResult r = m.match(map, {}, Pose2(1, 2, 3));
+  EXPECT_EQ(r.pose.x, 1.0);
+  EXPECT_EQ(r.evaluations, 0);
+}
+
+TEST(MatcherConfig, RejectsBadValues) {
+  MatcherConfig c;
+  c.evaluations = 0;
+  EXPECT_THROW(c.validate(), ConfigError);
+  c = {};
+  c.sigma_xy = -1;
+  EXPECT_THROW(c.validate(), ConfigError);
+}
+
+}  // namespace
+}  // namespace dsswarm

@@ -1,0 +1,70 @@
+#include "slam/slam.hpp"
+
+#include <cmath>
+
+#include "common/errors.hpp"
+
+namespace dsswarm {
+
+void SlamConfig::validate() const {
+  map.validate();
+  matcher.validate();
+  if (min_points < 1) throw ConfigError("slam.min_points must be >= 1");
+  if (insert_min_travel < 0.0 || insert_min_rotation < 0.0)
+    throw ConfigError("slam.insert_min_travel and insert_min_rotation must be >= 0");
+}
+
+Slam::Slam(const SlamConfig& config)
+    : config_(config), map_(config.map), matcher_(config.matcher, config.seed) {
+  config_.validate();
+}
+
+Pose2 Slam::predict(const LaserScan& scan) const {
+  if (config_.use_odometry && scan.odometry && last_odometry_) {
+    // The odometry increment is expressed in the robot frame of the previous
+    // odometry pose, so it applies to our corrected pose whatever the drift
+    // between the odometry frame and the map frame.
+    return pose_ * between(*last_odometry_, *scan.odometry);
+  }
+  if (!config_.use_odometry && previous_pose_) return pose_ * between(*previous_pose_, pose_);
+  return pose_;
+}
+
+SlamStep Slam::process(const LaserScan& scan) {
+  SlamStep step;
+  const bool first = processed_ == 0;
+  if (first && config_.use_odometry && scan.odometry) pose_ = *scan.odometry;  // map frame = odometry frame
+  step.prior = first ? pose_ : predict(scan);
+  ++processed_;
+
+  const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
+  const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
+  step.pose = step.prior;
+  if (!first && enough_points) {
+    const MatchResult m = matcher_.match(map_, points, step.prior);
+    step.pose = m.pose;
+    step.score = m.score;
+    step.matched = true;
+    ++matched_;
+  }
+
+  if (enough_points) {
+    bool insert = !last_insert_pose_;
+    if (last_insert_pose_) {
+      const Pose2 d = between(*last_insert_pose_, step.pose);
+      insert = std::hypot(d.x, d.y) >= config_.insert_min_travel ||
+               std::abs(d.theta) >= config_.insert_min_rotation;
+    }
+    if (insert) {
+      map_.insert_scan(step.pose, scan.laser_offset, points);
+      last_insert_pose_ = step.pose;
+    }
+  }
+
+  previous_pose_ = pose_;
+  pose_ = step.pose;
+  if (scan.odometry) last_odometry_ = scan.odometry;
+  return step;
+}
+
+}  // namespace dsswarm

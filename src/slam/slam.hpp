@@ -1,0 +1,69 @@
+#pragma once
+// Single-robot SLAM pipeline: feed scans (with odometry when the robot has
+// it), get a pose per scan; the map is readable at any time.
+//
+//   scan ─► points ─► prior (last pose ⊕ odometry increment) ─► Monte-Carlo
+//   matcher against the map ─► pose ─► insert scan into the map
+//
+// No I/O happens here: readers and writers live in src/io.
+#include <cstdint>
+#include <optional>
+
+#include "geometry/pose2.hpp"
+#include "grid/multires_map.hpp"
+#include "matching/monte_carlo_matcher.hpp"
+#include "sensor/laser_scan.hpp"
+#include "sensor/scan_points.hpp"
+
+namespace dsswarm {
+
+struct SlamConfig {
+  MapConfig map;
+  MatcherConfig matcher;
+  PointWeightConfig points;
+  bool use_odometry = true;    // false: constant-velocity prior from the last two poses
+  std::uint64_t seed = 1;      // the matcher's random source: same seed, same result
+  int min_points = 20;         // scans with fewer valid points are not matched (pose = prior)
+  // Insert a matched scan into the map only when the robot has moved this much
+  // since the last insertion: a robot standing still would otherwise pile
+  // evidence from one viewpoint, making its noise look certain.
+  double insert_min_travel = 0.0;       // m
+  double insert_min_rotation = 0.0;     // rad
+
+  void validate() const;
+};
+
+struct SlamStep {
+  Pose2 pose;            // estimated robot base pose in the map frame
+  Pose2 prior;           // prediction before matching
+  bool matched = false;  // false: too few points (pose = prior)
+  double score = 0.0;    // matcher score on the finest level
+};
+
+class Slam {
+ public:
+  explicit Slam(const SlamConfig& config = {});
+
+  SlamStep process(const LaserScan& scan);
+
+  const MultiResMap& map() const { return map_; }
+  const Pose2& pose() const { return pose_; }
+  std::size_t scans_processed() const { return processed_; }
+  std::size_t scans_matched() const { return matched_; }
+  const SlamConfig& config() const { return config_; }
+
+ private:
+  Pose2 predict(const LaserScan& scan) const;
+
+  SlamConfig config_;
+  MultiResMap map_;
+  MonteCarloMatcher matcher_;
+  Pose2 pose_;
+  std::optional<Pose2> previous_pose_;  // for the constant-velocity prior
+  std::optional<Pose2> last_odometry_;
+  std::optional<Pose2> last_insert_pose_;
+  std::size_t processed_ = 0;
+  std::size_t matched_ = 0;
+};
+
+}  // namespace dsswarm
