@@ -1,0 +1,108 @@
+// Tests of `dsswarm eval ...` as wired by add_eval_command (src/apps/eval_command.cpp).
+#include "apps/eval_command.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "io/trajectory/tum.hpp"
+
+namespace dsswarm {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(DSSWARM_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Parses `args` (without the program name) with an app that only has `eval`;
+// returns what the command printed on stdout.
+std::string run_cli(std::vector<std::string> args) {
+  CLI::App app("test");
+  add_eval_command(app);
+  std::vector<const char*> argv = {"dsswarm"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  testing::internal::CaptureStdout();
+  try {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+  } catch (...) {
+    testing::internal::GetCapturedStdout();
+    throw;
+  }
+  return testing::internal::GetCapturedStdout();
+}
+
+std::string last_line(const std::string& text) {
+  std::string trimmed = text;
+  while (!trimmed.empty() && trimmed.back() == '\n') trimmed.pop_back();
+  const auto pos = trimmed.rfind('\n');
+  return pos == std::string::npos ? trimmed : trimmed.substr(pos + 1);
+}
+
+struct Files {
+  fs::path estimate, truth, relations;
+};
+
+// Truth walks straight; the estimate drifts 1 cm sideways per step.
+Files write_inputs(const std::string& name) {
+  const fs::path dir = fresh_dir(name);
+  Trajectory truth, estimate;
+  std::ofstream rel(dir / "run.relations");
+  for (int i = 0; i < 10; ++i) {
+    truth.push_back({10.0 + i, Pose2(0.5 * i, 0.0, 0.0)});
+    estimate.push_back({10.0 + i, Pose2(0.5 * i, 0.01 * i, 0.0)});
+    if (i > 0) rel << (9.0 + i) << ' ' << (10.0 + i) << " 0.5 0 0 0 0 0\n";
+  }
+  rel << "50 51 0.5 0 0 0 0 0\n";  // no poses there: missing
+  rel.close();
+  write_tum(dir / "estimate.tum", estimate);
+  write_tum(dir / "truth.tum", truth);
+  return {dir / "estimate.tum", dir / "truth.tum", dir / "run.relations"};
+}
+
+TEST(EvalCommand, RelationsPrintsSummaryThenJsonLastLine) {
+  const Files f = write_inputs("cli_relations");
+  const std::string out = run_cli({"eval", "relations", f.estimate.string(), f.relations.string()});
+  EXPECT_NE(out.find("translational error"), std::string::npos) << out;
+  const auto j = nlohmann::json::parse(last_line(out));
+  EXPECT_EQ(j.size(), 6u);
+  EXPECT_EQ(j.at("used").get<int>(), 9);
+  EXPECT_EQ(j.at("missing").get<int>(), 1);
+  EXPECT_NEAR(j.at("trans_mean").get<double>(), 0.01, 1e-6);  // each step drifts 1 cm sideways
+  EXPECT_NEAR(j.at("rot_mean_deg").get<double>(), 0.0, 1e-6);
+}
+
+TEST(EvalCommand, AtePrintsSummaryThenJsonLastLine) {
+  const Files f = write_inputs("cli_ate");
+  const std::string out = run_cli({"eval", "ate", f.estimate.string(), f.truth.string(), "--max-dt", "0.001"});
+  EXPECT_NE(out.find("rmse"), std::string::npos) << out;
+  const auto j = nlohmann::json::parse(last_line(out));
+  EXPECT_EQ(j.size(), 5u);
+  EXPECT_EQ(j.at("matched").get<int>(), 10);
+  EXPECT_GT(j.at("ate_rmse").get<double>(), 0.0);  // a rotation cannot fully absorb a linear drift...
+  EXPECT_LT(j.at("ate_rmse").get<double>(), 0.01);  // ...but nearly
+}
+
+TEST(EvalCommand, InputProblemsPropagateAsInputError) {
+  const Files f = write_inputs("cli_errors");
+  EXPECT_THROW(run_cli({"eval", "relations", (f.estimate.parent_path() / "nope.tum").string(), f.relations.string()}),
+               InputError);
+  std::ofstream(f.relations, std::ios::app) << "1 2 3\n";
+  try {
+    run_cli({"eval", "relations", f.estimate.string(), f.relations.string()});
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run.relations:11"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dsswarm
