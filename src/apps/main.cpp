@@ -1,0 +1,34 @@
+// dsswarm: decentralized multi-robot 2D laser SLAM with Dempster–Shafer grids.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <exception>
+
+#include "apps/eval_command.hpp"
+#include "apps/run_command.hpp"
+#include "common/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"dsswarm: decentralized multi-robot 2D laser SLAM on small computers"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "dsswarm 0.1.0");
+  dsswarm::add_demo_command(app);
+  dsswarm::add_run_command(app);
+  dsswarm::add_eval_command(app);
+  dsswarm::add_config_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const dsswarm::InputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (const dsswarm::ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

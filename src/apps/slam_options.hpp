@@ -1,0 +1,25 @@
+#pragma once
+// Command-line options shared by every command that runs SLAM.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "slam/slam.hpp"
+
+namespace dsswarm {
+
+struct SlamOptions {
+  std::string config_file;           // JSON, see `dsswarm config`
+  std::optional<std::uint64_t> seed;
+  bool no_odometry = false;
+  std::optional<int> evaluations;
+  std::optional<double> resolution;
+
+  // Defaults, then the config file, then the flags given on the command line.
+  SlamConfig resolve() const;
+};
+
+void add_slam_options(CLI::App& command, SlamOptions& options);
+
+}  // namespace dsswarm

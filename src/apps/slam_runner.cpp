@@ -1,0 +1,90 @@
+#include "apps/slam_runner.hpp"
+
+#include <fmt/core.h>
+#include <sys/resource.h>
+
+#include <chrono>
+
+#include "config/slam_config_json.hpp"
+#include "io/atomic_file.hpp"
+#include "io/maps/map_server.hpp"
+#include "io/maps/render.hpp"
+
+namespace dsswarm {
+
+using Clock = std::chrono::steady_clock;
+
+std::size_t peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
+  RunResult result;
+  result.trajectory.reserve(log.scans.size());
+  const auto start = Clock::now();
+  auto next_report = start + std::chrono::seconds(2);
+  const std::size_t total = log.scans.size();
+  for (std::size_t i = 0; i < total; ++i) {
+    const LaserScan& scan = log.scans[i];
+    const SlamStep step = slam.process(scan);
+    result.trajectory.push_back({scan.timestamp, step.pose});
+    if (!label.empty() && (i & 63) == 0 && Clock::now() >= next_report) {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+      const double rate = static_cast<double>(i + 1) / elapsed;
+      fmt::print(stderr, "[{}] {}/{} scans ({:.0f}%), {:.0f} scans/s, about {:.0f} s left\n", label, i + 1, total,
+                 100.0 * static_cast<double>(i + 1) / static_cast<double>(total), rate,
+                 static_cast<double>(total - i - 1) / rate);
+      next_report = Clock::now() + std::chrono::seconds(2);
+    }
+  }
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.scans_read = total;
+  result.scans_matched = slam.scans_matched();
+  return result;
+}
+
+nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds) {
+  const std::size_t cells = slam.map().cells_allocated();
+  nlohmann::json j;
+  j["source"] = log.source;
+  j["scans_read"] = result.scans_read;
+  j["scans_matched"] = result.scans_matched;
+  j["wall_seconds"] = result.wall_seconds;
+  j["scans_per_second"] = result.wall_seconds > 0 ? static_cast<double>(result.scans_read) / result.wall_seconds : 0.0;
+  j["read_seconds"] = read_seconds;
+  j["peak_rss_bytes"] = peak_rss_bytes();
+  j["cells_allocated"] = cells;
+  j["map_bytes"] = slam.map().memory_bytes();
+  j["bytes_per_cell"] = cells > 0 ? static_cast<double>(slam.map().memory_bytes()) / static_cast<double>(cells) : 0.0;
+  j["warnings"] = log.warnings;
+  j["config"] = to_json(slam.config());
+  return j;
+}
+
+void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
+                       const nlohmann::json& stats, const Trajectory* ground_truth) {
+  std::filesystem::create_directories(dir);
+  write_tum(dir / "trajectory.tum", result.trajectory);
+  const GridRaster raster = slam.map().finest().to_raster();
+  write_map_server(dir / "map.yaml", raster);
+
+  if (raster.width > 0) {
+    const int scale = std::max(1, std::min(4, 1600 / std::max(raster.width, raster.height)));
+    Image picture = render_map(raster, scale);
+    auto path_of = [](const Trajectory& t) {
+      std::vector<Eigen::Vector2d> pts;
+      pts.reserve(t.size());
+      for (const auto& p : t) pts.push_back(p.pose.translation());
+      return pts;
+    };
+    if (ground_truth) draw_polyline(picture, raster, path_of(*ground_truth), Rgb{40, 170, 60}, 1);
+    draw_polyline(picture, raster, path_of(result.trajectory), agent_colour(0), 1);
+    if (!result.trajectory.empty()) draw_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 3);
+    write_png(dir / "map.png", picture);
+  }
+  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+}
+
+}  // namespace dsswarm

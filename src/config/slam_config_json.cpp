@@ -1,0 +1,112 @@
+#include "config/slam_config_json.hpp"
+
+#include <fstream>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "common/errors.hpp"
+
+namespace dsswarm {
+namespace {
+
+using nlohmann::json;
+
+// One table of fields drives both directions, so the two can never disagree.
+struct Field {
+  std::function<json(const SlamConfig&)> get;
+  std::function<void(const json&, SlamConfig&)> set;
+};
+
+template <typename T, typename Member>
+Field field(Member member) {
+  return {[member](const SlamConfig& c) { return json(std::invoke(member, c)); },
+          [member](const json& j, SlamConfig& c) { std::invoke(member, c) = j.get<T>(); }};
+}
+
+#define DSS_FIELD(T, path) field<T>([](auto& c) -> auto& { return c.path; })
+
+const std::map<std::string, std::map<std::string, Field>>& fields() {
+  static const std::map<std::string, std::map<std::string, Field>> table = {
+      {"map",
+       {{"resolution", DSS_FIELD(double, map.resolution)},
+        {"levels", DSS_FIELD(int, map.levels)},
+        {"free_space_on_coarse_levels", DSS_FIELD(bool, map.free_space_on_coarse_levels)},
+        {"splat_fine_hits", DSS_FIELD(bool, map.splat_fine_hits)}}},
+      {"evidence",
+       {{"hit_occupied", DSS_FIELD(float, map.evidence.hit_occupied)},
+        {"pass_free", DSS_FIELD(float, map.evidence.pass_free)},
+        {"min_unknown", DSS_FIELD(float, map.evidence.min_unknown)}}},
+      {"matcher",
+       {{"evaluations", DSS_FIELD(int, matcher.evaluations)},
+        {"sigma_xy", DSS_FIELD(double, matcher.sigma_xy)},
+        {"sigma_theta", DSS_FIELD(double, matcher.sigma_theta)},
+        {"shrink_on_success", DSS_FIELD(double, matcher.shrink_on_success)},
+        {"patience", DSS_FIELD(int, matcher.patience)},
+        {"min_sigma_xy", DSS_FIELD(double, matcher.min_sigma_xy)},
+        {"min_sigma_theta", DSS_FIELD(double, matcher.min_sigma_theta)},
+        {"polish_evaluations", DSS_FIELD(int, matcher.polish_evaluations)},
+        {"polish_step_theta", DSS_FIELD(double, matcher.polish_step_theta)},
+        {"unknown_value", DSS_FIELD(float, matcher.unknown_value)}}},
+      {"points",
+       {{"forward_gain", DSS_FIELD(double, points.forward_gain)},
+        {"forward_power", DSS_FIELD(double, points.forward_power)},
+        {"min_range", DSS_FIELD(double, points.min_range)},
+        {"max_range", DSS_FIELD(double, points.max_range)}}},
+      {"slam",
+       {{"use_odometry", DSS_FIELD(bool, use_odometry)},
+        {"seed", DSS_FIELD(std::uint64_t, seed)},
+        {"min_points", DSS_FIELD(int, min_points)},
+        {"insert_min_travel", DSS_FIELD(double, insert_min_travel)},
+        {"insert_min_rotation", DSS_FIELD(double, insert_min_rotation)}}},
+  };
+  return table;
+}
+
+#undef DSS_FIELD
+
+}  // namespace
+
+json to_json(const SlamConfig& config) {
+  json j = json::object();
+  for (const auto& [section, members] : fields())
+    for (const auto& [name, f] : members) j[section][name] = f.get(config);
+  return j;
+}
+
+void apply_json(const json& j, SlamConfig& config, const std::string& source) {
+  if (!j.is_object()) throw ConfigError(source + ": expected a JSON object at the top level");
+  for (const auto& [section, body] : j.items()) {
+    const auto s = fields().find(section);
+    if (s == fields().end()) throw ConfigError(source + ": unknown section '" + section + "'");
+    if (!body.is_object()) throw ConfigError(source + ": '" + section + "' must be an object");
+    for (const auto& [name, value] : body.items()) {
+      const auto f = s->second.find(name);
+      if (f == s->second.end()) throw ConfigError(source + ": unknown key '" + section + "." + name + "'");
+      try {
+        f->second.set(value, config);
+      } catch (const json::exception&) {
+        throw ConfigError(source + ": '" + section + "." + name + "' has the wrong type (" + value.dump() + ")");
+      }
+    }
+  }
+}
+
+void load_slam_config(const std::filesystem::path& path, SlamConfig& config) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("cannot open config file " + path.string());
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw ConfigError(path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+  apply_json(j, config, path.string());
+  try {
+    config.validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace dsswarm
