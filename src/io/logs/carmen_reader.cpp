@@ -1,0 +1,526 @@
+#include "io/logs/carmen_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "io/logs/text_line_reader.hpp"
+
+namespace dsswarm {
+
+BeamGeometry classic_beam_geometry(std::size_t n) {
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  double increment = 0.0;
+  if (n == 180) {
+    increment = 1.0 * kDeg;
+  } else if (n == 360 || n == 361) {
+    increment = 0.5 * kDeg;
+  } else if (n == 720 || n == 721) {
+    increment = 0.25 * kDeg;
+  } else if (n > 1) {
+    increment = std::numbers::pi / static_cast<double>(n - 1);
+  }
+  // Centred on the laser's forward axis.
+  return {-static_cast<double>(n > 0 ? n - 1 : 0) * increment / 2.0, increment};
+}
+
+BeamGeometry span180_beam_geometry(std::size_t n) {
+  const double increment = n > 1 ? std::numbers::pi / static_cast<double>(n - 1) : 0.0;
+  return {-std::numbers::pi / 2.0, increment};
+}
+
+namespace {
+
+using Tokens = std::vector<std::string_view>;
+
+void split_fields(std::string_view line, Tokens& out) {
+  out.clear();
+  const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && is_space(line[i])) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !is_space(line[i])) ++i;
+    if (i > start) out.push_back(line.substr(start, i - start));
+  }
+}
+
+// Parses the whole token or nothing ("1.5x" is not a number).
+template <class T>
+bool parse_whole(std::string_view token, T& value) {
+  const char* first = token.data();
+  const char* last = first + token.size();
+  // from_chars, unlike strtod, rejects a leading '+'.
+  if (last - first > 1 && *first == '+' && first[1] != '-') ++first;
+  const auto [end, ec] = std::from_chars(first, last, value);
+  return ec == std::errc() && end == last;
+}
+
+// Keeps error messages readable when a binary file is fed in.
+std::string shown(std::string_view token) {
+  constexpr std::size_t kMax = 40;
+  return token.size() <= kMax ? std::string(token) : std::string(token.substr(0, kMax)) + "...";
+}
+
+// Where a record came from, for error messages: "file:line: RECORD: ...".
+struct Where {
+  const std::string& file;
+  std::size_t line;
+  std::string_view record;
+
+  [[noreturn]] void fail(std::string_view message) const {
+    throw InputError(fmt::format("{}:{}: {}: {}", file, line, record, message));
+  }
+};
+
+double number_field(const Where& where, std::string_view token, std::string_view field) {
+  double value = 0.0;
+  if (!parse_whole(token, value)) {
+    where.fail(fmt::format("field '{}' is not a number: '{}'", field, shown(token)));
+  }
+  return value;
+}
+
+double finite_field(const Where& where, std::string_view token, std::string_view field) {
+  const double value = number_field(where, token, field);
+  if (!std::isfinite(value)) where.fail(fmt::format("field '{}' must be finite, got '{}'", field, shown(token)));
+  return value;
+}
+
+std::size_t count_field(const Where& where, std::string_view token, std::string_view field) {
+  unsigned long long value = 0;
+  if (!parse_whole(token, value)) {
+    where.fail(fmt::format("field '{}' must be a whole number >= 0, got '{}'", field, shown(token)));
+  }
+  return static_cast<std::size_t>(value);
+}
+
+// Ranges may be "nan" or "inf": kept as they are (LaserScan treats them as
+// invalid) and counted for a warning.
+void read_ranges(const Where& where, const Tokens& fields, std::size_t first, std::size_t n,
+                 std::vector<float>& ranges) {
+  ranges.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!parse_whole(fields[first + i], ranges[i])) {
+      where.fail(fmt::format("field 'range {} of {}' is not a number: '{}'", i + 1, n, shown(fields[first + i])));
+    }
+  }
+}
+
+Pose2 pose_fields(const Where& where, const Tokens& fields, std::size_t first,
+                  const std::array<std::string_view, 3>& names) {
+  return {finite_field(where, fields[first], names[0]), finite_field(where, fields[first + 1], names[1]),
+          finite_field(where, fields[first + 2], names[2])};
+}
+
+// One laser record as read, before the file-wide geometry and offset are known.
+struct LaserRecord {
+  LaserScan scan;
+  Pose2 laser_pose;  // laser in the odometry frame
+  Pose2 robot_pose;  // robot base in the odometry frame
+  std::size_t line = 0;
+  bool has_own_geometry = false;  // ROBOTLASER1 states its beam layout
+};
+
+struct Param {
+  double value = 0.0;
+  std::size_t line = 0;
+};
+
+struct Params {
+  std::optional<Param> angle_min, angle_max, angle_increment, num_beams, range_min, range_max;
+  std::optional<Param> offset_x, offset_y, offset_theta;
+  bool no_odometry = false;  // "# PARAM odometry none", written by write_carmen
+
+  bool has_geometry() const { return angle_min || angle_max || angle_increment; }
+  bool has_offset() const { return offset_x || offset_y || offset_theta; }
+};
+
+// Record types CARMEN defines that carry nothing we use: skipped silently.
+constexpr std::array<std::string_view, 34> kKnownOtherRecords = {
+    "PARAM",          "SYNC",           "TRUEPOS",        "RAWLASER1",       "RAWLASER2",
+    "RAWLASER3",      "RAWLASER4",      "ROBOTLASER0",    "ROBOTLASER2",     "LASER3",
+    "LASER4",         "REMISSIONFLASER", "REMISSIONRLASER", "REMISSIONLASER3", "REMISSIONLASER4",
+    "POSITIONLASER",  "NMEAGGA",        "NMEARMC",        "NMEA-GGA",        "NMEA-RMC",
+    "GPSNMEA",        "SONAR",          "BUMPER",         "SCANMARK",        "IMU",
+    "VECTORMOVE",     "ROBOTVELOCITY",  "FOLLOWTRAJECTORY", "FOLLOW-TRAJECTORY", "BASEVELOCITY",
+    "OLD",            "COMMENT",        "MARKER",         "GLOBALPOS"};
+
+constexpr std::size_t kMaxUnknownTypeWarnings = 10;
+
+class CarmenParser {
+ public:
+  CarmenParser(std::string file, const CarmenOptions& options) : file_(std::move(file)), options_(options) {}
+
+  void parse_line(std::string_view text, std::size_t line) {
+    const std::size_t first = text.find_first_not_of(" \t");
+    if (first == std::string_view::npos) return;
+    text.remove_prefix(first);
+    if (text.front() == '#') {
+      parse_comment(text.substr(1), line);
+      return;
+    }
+    split_fields(text, fields_);
+    if (fields_.empty()) return;
+    const std::string_view type = fields_[0];
+    if (type == "FLASER") {
+      parse_old_laser(line, type, flaser_);
+    } else if (type == "RLASER") {
+      parse_old_laser(line, type, rlaser_);
+    } else if (type == "ROBOTLASER1") {
+      parse_robotlaser(line);
+    } else if (type == "ODOM") {
+      parse_odom(line);
+    } else if (std::find(kKnownOtherRecords.begin(), kKnownOtherRecords.end(), type) == kKnownOtherRecords.end()) {
+      auto [it, inserted] = unknown_types_.try_emplace(std::string(type), UnknownType{line, 0});
+      ++it->second.count;
+      if (inserted) unknown_order_.push_back(it->first);
+    }
+  }
+
+  SensorLog finish() {
+    SensorLog log;
+    log.source = file_;
+    std::vector<LaserRecord>* chosen = nullptr;
+    std::string_view chosen_type;
+    if (!flaser_.empty()) {
+      chosen = &flaser_;
+      chosen_type = "FLASER";
+    } else if (!robotlaser_.empty()) {
+      chosen = &robotlaser_;
+      chosen_type = "ROBOTLASER1";
+    } else if (!rlaser_.empty()) {
+      chosen = &rlaser_;
+      chosen_type = "RLASER";
+    } else {
+      throw InputError(file_ + ": no laser scans (FLASER/RLASER/ROBOTLASER1) found" +
+                       (empty_scans_ > 0 ? fmt::format(" ({} records have 0 readings)", empty_scans_) : ""));
+    }
+    note_ignored_streams(chosen_type, log.warnings);
+    const Pose2 offset = laser_offset(*chosen, log.warnings);
+    const auto [range_min, range_max] = range_limits();
+
+    std::size_t nonfinite = 0;
+    std::size_t backwards = 0;
+    log.scans.reserve(chosen->size());
+    for (LaserRecord& record : *chosen) {
+      LaserScan& scan = record.scan;
+      if (!record.has_own_geometry) {
+        const BeamGeometry geometry = beam_geometry(scan.ranges.size(), record.line, chosen_type);
+        scan.angle_min = geometry.angle_min;
+        scan.angle_increment = geometry.angle_increment;
+        scan.range_max = range_max;
+      }
+      scan.range_min = range_min;
+      if (scan.range_max <= scan.range_min) {
+        Where{file_, record.line, chosen_type}.fail(fmt::format(
+            "maximum range {} m is not above the minimum range {} m", scan.range_max, scan.range_min));
+      }
+      if (!params_.no_odometry) scan.odometry = record.robot_pose;
+      scan.laser_offset = offset;
+      nonfinite += static_cast<std::size_t>(
+          std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return !std::isfinite(r); }));
+      if (!log.scans.empty() && scan.timestamp < log.scans.back().timestamp) ++backwards;
+      log.scans.push_back(std::move(scan));
+    }
+
+    if (backwards > 0) {
+      log.warnings.push_back(fmt::format("{}: {} of {} scan timestamps run backwards (kept in file order)", file_,
+                                         backwards, log.scans.size()));
+    }
+    if (odom_backwards_ > 0) {
+      log.warnings.push_back(fmt::format("{}: {} of {} ODOM timestamps run backwards (kept in file order)", file_,
+                                         odom_backwards_, odom_count_));
+    }
+    if (nonfinite > 0) {
+      log.warnings.push_back(fmt::format("{}: {} range readings are NaN or inf (kept; they count as invalid beams)",
+                                         file_, nonfinite));
+    }
+    if (empty_scans_ > 0) {
+      log.warnings.push_back(fmt::format("{}: skipped {} laser records with 0 readings", file_, empty_scans_));
+    }
+    for (std::size_t i = 0; i < unknown_order_.size(); ++i) {
+      if (i == kMaxUnknownTypeWarnings) {
+        log.warnings.push_back(fmt::format("{}: {} more unknown record types skipped", file_,
+                                           unknown_order_.size() - kMaxUnknownTypeWarnings));
+        break;
+      }
+      const UnknownType& u = unknown_types_.at(unknown_order_[i]);
+      log.warnings.push_back(fmt::format("{}:{}: unknown record type '{}' skipped ({} line{})", file_, u.first_line,
+                                         shown(unknown_order_[i]), u.count, u.count == 1 ? "" : "s"));
+    }
+    return log;
+  }
+
+ private:
+  struct UnknownType {
+    std::size_t first_line = 0;
+    std::size_t count = 0;
+  };
+
+  // FLASER/RLASER n r1..rn x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
+  void parse_old_laser(std::size_t line, std::string_view type, std::vector<LaserRecord>& out) {
+    const Where where{file_, line, type};
+    if (fields_.size() < 2) where.fail("missing field 'num_readings'");
+    const std::size_t n = count_field(where, fields_[1], "num_readings");
+    constexpr std::size_t kTrailing = 9;  // x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
+    const std::size_t after = fields_.size() - 2;
+    if (after != n + kTrailing) {
+      const std::size_t found = after < n ? after : after - std::min(after, kTrailing);
+      where.fail(fmt::format("expected {} ranges, found {} ({} fields after num_readings; the record needs the {} "
+                             "ranges then x y theta odom_x odom_y odom_theta timestamp host logger_timestamp)",
+                             n, found, after, n));
+    }
+    if (n == 0) {
+      ++empty_scans_;
+      return;
+    }
+    LaserRecord record;
+    record.line = line;
+    read_ranges(where, fields_, 2, n, record.scan.ranges);
+    const std::size_t tail = 2 + n;
+    record.laser_pose = pose_fields(where, fields_, tail, {"x", "y", "theta"});
+    record.robot_pose = pose_fields(where, fields_, tail + 3, {"odom_x", "odom_y", "odom_theta"});
+    record.scan.timestamp = finite_field(where, fields_[tail + 6], "timestamp");
+    number_field(where, fields_[tail + 8], "logger_timestamp");
+    out.push_back(std::move(record));
+  }
+
+  // ROBOTLASER1 laser_type start_angle fov angular_res max_range accuracy remission_mode
+  //   n r1..rn k rem1..remk laser_x laser_y laser_theta robot_x robot_y robot_theta
+  //   tv rv forward_safety side_safety turn_axis timestamp host logger_timestamp
+  void parse_robotlaser(std::size_t line) {
+    const Where where{file_, line, "ROBOTLASER1"};
+    constexpr std::size_t kHeader = 9;  // type name + 7 parameters + num_readings
+    if (fields_.size() < kHeader) {
+      where.fail(fmt::format("expected at least {} fields before the ranges, found {}", kHeader, fields_.size()));
+    }
+    number_field(where, fields_[1], "laser_type");
+    const double start_angle = finite_field(where, fields_[2], "start_angle");
+    number_field(where, fields_[3], "field_of_view");
+    const double resolution = finite_field(where, fields_[4], "angular_resolution");
+    const double max_range = finite_field(where, fields_[5], "maximum_range");
+    number_field(where, fields_[6], "accuracy");
+    number_field(where, fields_[7], "remission_mode");
+    const std::size_t n = count_field(where, fields_[8], "num_readings");
+    if (fields_.size() < kHeader + n + 1) {
+      where.fail(fmt::format("expected {} ranges then num_remissions, found {} fields after num_readings", n,
+                             fields_.size() - kHeader));
+    }
+    const std::size_t k = count_field(where, fields_[kHeader + n], "num_remissions");
+    constexpr std::size_t kTrailing = 14;  // 2 poses, tv rv forward side turn, timestamp host logger_timestamp
+    const std::size_t after = fields_.size() - (kHeader + n + 1);
+    if (after != k + kTrailing) {
+      where.fail(fmt::format("expected {} remissions then {} fields (laser pose, robot pose, tv rv forward_safety "
+                             "side_safety turn_axis timestamp host logger_timestamp), found {} fields after "
+                             "num_remissions",
+                             k, kTrailing, after));
+    }
+    if (n == 0) {
+      ++empty_scans_;
+      return;
+    }
+    if (resolution == 0.0) where.fail("field 'angular_resolution' must not be 0");
+    if (!(max_range > 0.0)) where.fail(fmt::format("field 'maximum_range' must be positive, got {}", max_range));
+    LaserRecord record;
+    record.line = line;
+    record.has_own_geometry = true;
+    record.scan.angle_min = start_angle;
+    record.scan.angle_increment = resolution;
+    record.scan.range_max = max_range;
+    read_ranges(where, fields_, kHeader, n, record.scan.ranges);
+    const std::size_t first_remission = kHeader + n + 1;
+    for (std::size_t i = 0; i < k; ++i) number_field(where, fields_[first_remission + i], "remission");
+    const std::size_t tail = first_remission + k;
+    record.laser_pose = pose_fields(where, fields_, tail, {"laser_x", "laser_y", "laser_theta"});
+    record.robot_pose = pose_fields(where, fields_, tail + 3, {"robot_x", "robot_y", "robot_theta"});
+    static constexpr std::array<std::string_view, 5> kMotion = {"tv", "rv", "forward_safety", "side_safety",
+                                                                "turn_axis"};
+    for (std::size_t i = 0; i < kMotion.size(); ++i) number_field(where, fields_[tail + 6 + i], kMotion[i]);
+    record.scan.timestamp = finite_field(where, fields_[tail + 11], "timestamp");
+    number_field(where, fields_[tail + 13], "logger_timestamp");
+    robotlaser_.push_back(std::move(record));
+  }
+
+  // ODOM x y theta tv rv accel timestamp host logger_timestamp. Validated and
+  // checked for order only: laser records carry their own odometry pose.
+  void parse_odom(std::size_t line) {
+    const Where where{file_, line, "ODOM"};
+    constexpr std::size_t kFields = 9;
+    if (fields_.size() - 1 != kFields) {
+      where.fail(fmt::format("expected {} fields (x y theta tv rv accel timestamp host logger_timestamp), found {}",
+                             kFields, fields_.size() - 1));
+    }
+    pose_fields(where, fields_, 1, {"x", "y", "theta"});
+    number_field(where, fields_[4], "tv");
+    number_field(where, fields_[5], "rv");
+    number_field(where, fields_[6], "accel");
+    const double timestamp = finite_field(where, fields_[7], "timestamp");
+    number_field(where, fields_[9], "logger_timestamp");
+    if (odom_count_ > 0 && timestamp < last_odom_timestamp_) ++odom_backwards_;
+    last_odom_timestamp_ = timestamp;
+    ++odom_count_;
+  }
+
+  // "# PARAM key value": the scan geometry of the whole file.
+  void parse_comment(std::string_view text, std::size_t line) {
+    split_fields(text, fields_);
+    if (fields_.size() < 2 || fields_[0] != "PARAM") return;
+    const std::string_view key = fields_[1];
+    const std::pair<std::string_view, std::optional<Param>*> numeric[] = {
+        {"laser_angle_min", &params_.angle_min},
+        {"laser_angle_max", &params_.angle_max},
+        {"laser_angle_increment", &params_.angle_increment},
+        {"laser_num_beams", &params_.num_beams},
+        {"laser_range_min", &params_.range_min},
+        {"laser_range_max", &params_.range_max},
+        {"laser_offset_x", &params_.offset_x},
+        {"laser_offset_y", &params_.offset_y},
+        {"laser_offset_theta", &params_.offset_theta},
+    };
+    const Where where{file_, line, "# PARAM"};
+    if (key == "odometry") {
+      if (fields_.size() < 3) where.fail("odometry: missing value");
+      params_.no_odometry = fields_[2] == "none";
+      return;
+    }
+    for (const auto& [name, slot] : numeric) {
+      if (key != name) continue;
+      if (fields_.size() < 3) where.fail(fmt::format("{}: missing value", name));
+      Param param{finite_field(where, fields_[2], name), line};
+      if (slot == &params_.num_beams &&
+          (param.value < 1.0 || param.value != std::floor(param.value) || param.value > 1e7)) {
+        where.fail(fmt::format("laser_num_beams must be a positive whole number, got '{}'", shown(fields_[2])));
+      }
+      if (slot == &params_.angle_increment && param.value == 0.0) where.fail("laser_angle_increment must not be 0");
+      *slot = param;
+      return;
+    }
+  }
+
+  BeamGeometry beam_geometry(std::size_t n, std::size_t line, std::string_view type) const {
+    using Convention = CarmenOptions::BeamConvention;
+    if (options_.beams == Convention::Classic) return classic_beam_geometry(n);
+    if (options_.beams == Convention::Span180) return span180_beam_geometry(n);
+    if (!params_.has_geometry()) return classic_beam_geometry(n);
+    if (params_.num_beams && static_cast<double>(n) != params_.num_beams->value) {
+      Where{file_, line, type}.fail(fmt::format("{} ranges, but '# PARAM laser_num_beams {}' (line {})", n,
+                                                params_.num_beams->value, params_.num_beams->line));
+    }
+    const double span_steps = static_cast<double>(n > 0 ? n - 1 : 0);
+    BeamGeometry geometry = classic_beam_geometry(n);
+    if (params_.angle_increment) {
+      geometry.angle_increment = params_.angle_increment->value;
+    } else if (params_.angle_min && params_.angle_max && n > 1) {
+      geometry.angle_increment = (params_.angle_max->value - params_.angle_min->value) / span_steps;
+    }
+    if (params_.angle_min) {
+      geometry.angle_min = params_.angle_min->value;
+    } else if (params_.angle_max) {
+      geometry.angle_min = params_.angle_max->value - span_steps * geometry.angle_increment;
+    } else {
+      geometry.angle_min = -span_steps * geometry.angle_increment / 2.0;
+    }
+    return geometry;
+  }
+
+  std::pair<double, double> range_limits() const {
+    const double range_min = params_.range_min ? params_.range_min->value : 0.0;
+    const double range_max = params_.range_max ? params_.range_max->value : kCarmenDefaultRangeMax;
+    if (range_min < 0.0) {
+      Where{file_, params_.range_min->line, "# PARAM"}.fail(
+          fmt::format("laser_range_min must not be negative, got {}", range_min));
+    }
+    if (params_.range_max && range_max <= range_min) {
+      Where{file_, params_.range_max->line, "# PARAM"}.fail(
+          fmt::format("laser_range_max ({}) must be above laser_range_min ({})", range_max, range_min));
+    }
+    return {range_min, range_max};
+  }
+
+  // Options override > `# PARAM` offsets > the offset implied by the first
+  // record's laser and robot poses. The poses of every record are checked
+  // against the chosen offset so a log with a moving laser is noticed.
+  Pose2 laser_offset(const std::vector<LaserRecord>& records, std::vector<std::string>& warnings) const {
+    if (options_.laser_offset) return *options_.laser_offset;
+    const auto implied = [](const LaserRecord& r) { return between(r.robot_pose, r.laser_pose); };
+    const auto differs = [](const Pose2& a, const Pose2& b, double metres, double radians) {
+      return std::hypot(a.x - b.x, a.y - b.y) > metres || std::abs(normalize_angle(a.theta - b.theta)) > radians;
+    };
+    // Logs store poses rounded to 1e-6, so implied offsets jitter at that level.
+    constexpr double kJitterMetres = 1e-3, kJitterRadians = 1e-3;
+    // A stated offset that disagrees by more than this with the poses deserves a word.
+    constexpr double kDisagreeMetres = 0.01, kDisagreeRadians = 0.01;
+    if (params_.has_offset()) {
+      const Pose2 stated(params_.offset_x ? params_.offset_x->value : 0.0,
+                         params_.offset_y ? params_.offset_y->value : 0.0,
+                         params_.offset_theta ? params_.offset_theta->value : 0.0);
+      if (!params_.no_odometry) {
+        const Pose2 first = implied(records.front());
+        if (differs(stated, first, kDisagreeMetres, kDisagreeRadians)) {
+          warnings.push_back(fmt::format(
+              "{}: '# PARAM laser_offset' ({:.4f}, {:.4f}, {:.4f}) differs from the offset implied by the scan poses "
+              "({:.4f}, {:.4f}, {:.4f}); using the PARAM",
+              file_, stated.x, stated.y, stated.theta, first.x, first.y, first.theta));
+        }
+      }
+      return stated;
+    }
+    if (params_.no_odometry) return Pose2{};
+    const Pose2 offset = implied(records.front());
+    const std::size_t varying = static_cast<std::size_t>(std::count_if(
+        records.begin(), records.end(),
+        [&](const LaserRecord& r) { return differs(implied(r), offset, kJitterMetres, kJitterRadians); }));
+    if (varying > 0) {
+      warnings.push_back(fmt::format(
+          "{}: the laser offset implied by the scan poses varies in {} of {} scans; using the first one "
+          "({:.4f}, {:.4f}, {:.4f})",
+          file_, varying, records.size(), offset.x, offset.y, offset.theta));
+    }
+    return offset;
+  }
+
+  void note_ignored_streams(std::string_view chosen, std::vector<std::string>& warnings) const {
+    const std::pair<std::string_view, std::size_t> streams[] = {
+        {"FLASER", flaser_.size()}, {"ROBOTLASER1", robotlaser_.size()}, {"RLASER", rlaser_.size()}};
+    for (const auto& [type, count] : streams) {
+      if (type != chosen && count > 0) {
+        warnings.push_back(fmt::format("{}: ignored {} {} records (read the {} scans)", file_, count, type, chosen));
+      }
+    }
+  }
+
+  std::string file_;
+  const CarmenOptions& options_;
+  Tokens fields_;
+  Params params_;
+  std::vector<LaserRecord> flaser_, rlaser_, robotlaser_;
+  std::size_t empty_scans_ = 0;
+  std::size_t odom_count_ = 0;
+  std::size_t odom_backwards_ = 0;
+  double last_odom_timestamp_ = 0.0;
+  std::map<std::string, UnknownType, std::less<>> unknown_types_;
+  std::vector<std::string> unknown_order_;
+};
+
+}  // namespace
+
+SensorLog read_carmen(const std::filesystem::path& path, const CarmenOptions& options) {
+  TextLineReader reader(path);
+  CarmenParser parser(reader.name(), options);
+  std::string_view line;
+  while (reader.next(line)) parser.parse_line(line, reader.line_number());
+  return parser.finish();
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,24 @@
+#pragma once
+// One entry point for every log format the CLI accepts: ROS1 bags (`.bag`)
+// and CARMEN text logs (anything else: .log, .clf, .gz, .txt...).
+#include <filesystem>
+#include <string>
+
+#include "io/logs/carmen_reader.hpp"
+#include "sensor/laser_scan.hpp"
+
+namespace dsswarm {
+
+struct LogReadOptions {
+  CarmenOptions carmen;              // CARMEN logs only
+  std::string scan_topic = "/scan";  // ROS bags only
+  std::string odom_topic = "/odom";  // ROS bags only
+  bool use_tf_odometry = false;      // ROS bags only: odometry from /tf instead of the odom topic
+};
+
+// Dispatches on the file extension (`.bag`, any case, is a ROS bag). Throws
+// InputError naming the file for unreadable input, and for a bag when the
+// build has no ROS bag support.
+SensorLog read_log(const std::filesystem::path& path, const LogReadOptions& options = {});
+
+}  // namespace dsswarm
