@@ -72,9 +72,32 @@ void polish(Search& search, Pose2& best, double& best_score, double step_xy, dou
 
 MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<ScanPoint>& points,
                                      const Pose2& prior) {
+  return match(map, points, std::vector<Pose2>{prior});
+}
+
+MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<ScanPoint>& points,
+                                     const std::vector<Pose2>& priors) {
   MatchResult result;
-  result.pose = prior;
+  if (priors.empty()) return result;
+  result.pose = priors.front();
   if (points.empty()) return result;
+
+  // Several predictions (odometry, constant velocity, standing still) may
+  // disagree when odometry lags or jumps; start from the one the coarsest
+  // map likes best. The first prior is the one reported as `prior_score`.
+  Pose2 prior = priors.front();
+  if (priors.size() > 1) {
+    const DsGrid& coarse = map.level(map.levels() - 1);
+    double best_prior_score = -1.0;
+    for (const Pose2& p : priors) {
+      const double s = score_pose(coarse, points, p, 1, config_.unknown_value);
+      ++result.evaluations;
+      if (s > best_prior_score) {
+        best_prior_score = s;
+        prior = p;
+      }
+    }
+  }
 
   const int levels = map.levels();
   // Coarse levels are cheap to search but only place the scan roughly; give
@@ -125,7 +148,7 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
     }
     if (level == 0) result.score = best_score;
   }
-  result.prior_score = score_pose(map.finest(), points, prior, 1, config_.unknown_value);
+  result.prior_score = score_pose(map.finest(), points, priors.front(), 1, config_.unknown_value);
   result.pose = best;
   return result;
 }

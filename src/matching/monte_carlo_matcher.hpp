@@ -46,6 +46,8 @@ class MonteCarloMatcher {
   explicit MonteCarloMatcher(const MatcherConfig& config = {}, std::uint64_t seed = 1);
 
   MatchResult match(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
+  // Starts from whichever of `priors` scores best on the coarsest level.
+  MatchResult match(const MultiResMap& map, const std::vector<ScanPoint>& points, const std::vector<Pose2>& priors);
 
   const MatcherConfig& config() const { return config_; }
 

@@ -19,14 +19,23 @@ Slam::Slam(const SlamConfig& config)
   config_.validate();
 }
 
+bool Slam::odometry_stale(const LaserScan& scan) const {
+  // A moving robot whose odometry repeats the previous reading exactly has a
+  // stalled odometry stream, not a robot that stopped dead.
+  return scan.odometry && anchor_odometry_ && odometry_moving_ && scan.odometry->x == anchor_odometry_->x &&
+         scan.odometry->y == anchor_odometry_->y && scan.odometry->theta == anchor_odometry_->theta;
+}
+
 Pose2 Slam::predict(const LaserScan& scan) const {
-  if (config_.use_odometry && scan.odometry && last_odometry_) {
-    // The odometry increment is expressed in the robot frame of the previous
+  const bool odometry_usable = config_.use_odometry && scan.odometry && anchor_odometry_ && !odometry_stale(scan);
+  if (odometry_usable) {
+    // The odometry increment is expressed in the robot frame of the anchor
     // odometry pose, so it applies to our corrected pose whatever the drift
     // between the odometry frame and the map frame.
-    return pose_ * between(*last_odometry_, *scan.odometry);
+    return anchor_pose_ * between(*anchor_odometry_, *scan.odometry);
   }
-  if (!config_.use_odometry && previous_pose_) return pose_ * between(*previous_pose_, pose_);
+  // No (usable) odometry: constant velocity from the last two poses.
+  if (previous_pose_) return pose_ * between(*previous_pose_, pose_);
   return pose_;
 }
 
@@ -41,7 +50,13 @@ SlamStep Slam::process(const LaserScan& scan) {
   const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
   step.pose = step.prior;
   if (!first && enough_points) {
-    const MatchResult m = matcher_.match(map_, points, step.prior);
+    // Odometry can lag and then jump (intel does both): also try the
+    // constant-velocity prediction and standing still, and start from the
+    // best of them.
+    std::vector<Pose2> priors{step.prior};
+    if (previous_pose_) priors.push_back(pose_ * between(*previous_pose_, pose_));
+    priors.push_back(pose_);
+    const MatchResult m = matcher_.match(map_, points, priors);
     step.pose = m.pose;
     step.score = m.score;
     step.matched = true;
@@ -61,9 +76,16 @@ SlamStep Slam::process(const LaserScan& scan) {
     }
   }
 
+  if (scan.odometry && !odometry_stale(scan)) {
+    if (anchor_odometry_) {
+      const Pose2 d = between(*anchor_odometry_, *scan.odometry);
+      odometry_moving_ = d.x != 0.0 || d.y != 0.0 || d.theta != 0.0;
+    }
+    anchor_odometry_ = scan.odometry;
+    anchor_pose_ = step.pose;
+  }
   previous_pose_ = pose_;
   pose_ = step.pose;
-  if (scan.odometry) last_odometry_ = scan.odometry;
   return step;
 }
 

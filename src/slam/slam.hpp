@@ -54,13 +54,19 @@ class Slam {
 
  private:
   Pose2 predict(const LaserScan& scan) const;
+  bool odometry_stale(const LaserScan& scan) const;
 
   SlamConfig config_;
   MultiResMap map_;
   MonteCarloMatcher matcher_;
   Pose2 pose_;
   std::optional<Pose2> previous_pose_;  // for the constant-velocity prior
-  std::optional<Pose2> last_odometry_;
+  // Last odometry reading that moved, and our pose at that scan. Increments
+  // are taken from this anchor, so odometry that freezes for a few scans and
+  // then jumps (real logs do this) still predicts the whole motion.
+  std::optional<Pose2> anchor_odometry_;
+  Pose2 anchor_pose_;
+  bool odometry_moving_ = false;  // did the last fresh odometry increment move?
   std::optional<Pose2> last_insert_pose_;
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
