@@ -1,0 +1,492 @@
+#include "io/rosbag/rosbag_reader.hpp"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/rosbag/rosbag_test_writer.hpp"
+
+namespace dsswarm {
+namespace {
+
+namespace fs = std::filesystem;
+using rosbag_raw::RawOdom;
+using rosbag_raw::RawScan;
+using rosbag_raw::RawStatic;
+using rosbag_raw::TestBagMessage;
+using rosbag_raw::TestBagSpec;
+
+constexpr double kPi = std::numbers::pi;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(DSSWARM_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// ---------------------------------------------------------------- bags written here
+
+TestBagMessage scan_at(double stamp, std::vector<float> ranges) {
+  TestBagMessage m;
+  m.kind = TestBagMessage::Kind::Scan;
+  m.scan.stamp = stamp;
+  m.scan.angle_min = static_cast<float>(-kPi / 2);
+  m.scan.angle_increment = static_cast<float>(kPi / 2);
+  m.scan.range_min = 0.1F;
+  m.scan.range_max = 30.0F;
+  m.scan.ranges = std::move(ranges);
+  return m;
+}
+
+TestBagMessage odom_at(double stamp, double x, double y, double theta) {
+  TestBagMessage m;
+  m.kind = TestBagMessage::Kind::Odometry;
+  m.odom = RawOdom{stamp, x, y, theta};
+  return m;
+}
+
+TestBagMessage laser_offset(double x, double y, double theta) {
+  TestBagMessage m;
+  m.kind = TestBagMessage::Kind::LaserOffset;
+  m.offset = RawStatic{true, x, y, theta};
+  return m;
+}
+
+// Odometry at 10, 11, 12 s (one glitched record in between, stamped 13.5),
+// and five scans of which the third is stamped 0.4 s ahead of its true time.
+TestBagSpec small_spec() {
+  TestBagSpec spec;
+  spec.messages = {
+      laser_offset(0.25, -0.1, 0.05),
+      odom_at(10.0, 0.0, 0.0, 0.0),
+      scan_at(10.2, {1.0F, 2.0F, 3.0F}),
+      scan_at(10.4, {1.5F, 2.5F, 3.5F}),
+      odom_at(11.0, 1.0, 2.0, kPi / 2),
+      scan_at(10.9, {4.0F, 40.0F, 0.0F}),  // stamp jumps ahead of the true 10.5 s
+      odom_at(13.5, 50.0, 50.0, -1.0),     // glitch: must not be interpolated through
+      scan_at(10.6, {5.0F, 5.0F, 5.0F}),
+      odom_at(12.0, 1.0, 4.0, kPi),
+      scan_at(11.5, {6.0F, 6.0F, 6.0F}),
+  };
+  return spec;
+}
+
+fs::path write_bag(const std::string& name, const TestBagSpec& spec) {
+  const fs::path path = fresh_dir("rosbag_" + name) / (name + ".bag");
+  rosbag_raw::write_test_bag(path.string(), spec);
+  return path;
+}
+
+bool has_warning(const SensorLog& log, const std::string& text) {
+  return std::any_of(log.warnings.begin(), log.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += l + "\n";
+  return out;
+}
+
+void expect_pose_near(const std::optional<Pose2>& actual, const Pose2& expected, double tol) {
+  ASSERT_TRUE(actual.has_value());
+  EXPECT_NEAR(actual->x, expected.x, tol);
+  EXPECT_NEAR(actual->y, expected.y, tol);
+  EXPECT_NEAR(normalize_angle(actual->theta - expected.theta), 0.0, tol);
+}
+
+std::string input_error_of(const fs::path& path, const RosbagOptions& options = {}) {
+  try {
+    read_rosbag(path, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for " << path;
+  return {};
+}
+
+TEST(RosbagReader, ReadsScansInFileOrderWithInterpolatedOdometry) {
+  const SensorLog log = read_rosbag(write_bag("small", small_spec()));
+  ASSERT_EQ(log.scans.size(), 5U);
+  EXPECT_NE(log.source.find("small.bag"), std::string::npos);
+
+  // File order, original stamps (the bag index sorts them by time).
+  const std::vector<double> stamps{10.2, 10.4, 10.9, 10.6, 11.5};
+  for (std::size_t i = 0; i < stamps.size(); ++i)
+    EXPECT_NEAR(log.scans[i].timestamp, stamps[i], 1e-9) << i;
+  const LaserScan& third = log.scans[2];
+  EXPECT_EQ(third.ranges, (std::vector<float>{4.0F, 40.0F, 0.0F}));
+  EXPECT_NEAR(third.angle_min, -kPi / 2, 1e-6);
+  EXPECT_NEAR(third.angle_increment, kPi / 2, 1e-6);
+  EXPECT_FLOAT_EQ(static_cast<float>(third.range_min), 0.1F);
+  EXPECT_FLOAT_EQ(static_cast<float>(third.range_max), 30.0F);
+  EXPECT_EQ(third.valid_count(), 1U);  // 40 m is beyond range_max, 0 below range_min
+
+  for (const LaserScan& s : log.scans) {
+    EXPECT_NEAR(s.laser_offset.x, 0.25, 1e-12);
+    EXPECT_NEAR(s.laser_offset.y, -0.1, 1e-12);
+    EXPECT_NEAR(s.laser_offset.theta, 0.05, 1e-12);
+  }
+
+  // Between odometry at 10 s (0,0,0) and 11 s (1,2,pi/2); the glitched odometry record is skipped.
+  expect_pose_near(log.scans[0].odometry, Pose2(0.2, 0.4, 0.2 * kPi / 2), 1e-9);
+  expect_pose_near(log.scans[1].odometry, Pose2(0.4, 0.8, 0.4 * kPi / 2), 1e-9);
+  // The scan stamped 10.9 s sits between 10.4 and 10.6 in the file: looked up at 10.5 s.
+  expect_pose_near(log.scans[2].odometry, Pose2(0.5, 1.0, 0.5 * kPi / 2), 1e-9);
+  expect_pose_near(log.scans[3].odometry, Pose2(0.6, 1.2, 0.6 * kPi / 2), 1e-9);
+  // Between 11 s (1,2,pi/2) and 12 s (1,4,pi), not via the glitch at 13.5 s.
+  expect_pose_near(log.scans[4].odometry, Pose2(1.0, 3.0, 0.75 * kPi), 1e-9);
+
+  EXPECT_TRUE(has_warning(log, "1 of 5 scan timestamps run backwards (kept in file order)"))
+      << joined(log.warnings);
+  EXPECT_TRUE(has_warning(log, "1 of 4 odometry stamps on /odom are out of time order"))
+      << joined(log.warnings);
+  EXPECT_TRUE(has_warning(log, "1 scans with out-of-order stamps")) << joined(log.warnings);
+  EXPECT_EQ(log.warnings.size(), 3U) << joined(log.warnings);
+}
+
+TEST(RosbagReader, CompressedChunksReadTheSame) {
+  const SensorLog plain = read_rosbag(write_bag("small_plain", small_spec()));
+  for (const auto compression : {TestBagSpec::Compression::Bz2, TestBagSpec::Compression::Lz4}) {
+    TestBagSpec spec = small_spec();
+    spec.compression = compression;
+    const SensorLog compressed = read_rosbag(write_bag("small_compressed", spec));
+    ASSERT_EQ(compressed.scans.size(), plain.scans.size());
+    for (std::size_t i = 0; i < plain.scans.size(); ++i) {
+      EXPECT_EQ(compressed.scans[i].timestamp, plain.scans[i].timestamp);
+      EXPECT_EQ(compressed.scans[i].ranges, plain.scans[i].ranges);
+      ASSERT_TRUE(compressed.scans[i].odometry.has_value());
+      EXPECT_EQ(compressed.scans[i].odometry->x, plain.scans[i].odometry->x);
+    }
+    EXPECT_EQ(compressed.warnings.size(), plain.warnings.size());
+  }
+}
+
+TEST(RosbagReader, OdometryFromTfWhenAsked) {
+  TestBagSpec spec = small_spec();
+  spec.odom_topic.clear();  // odometry only as odom -> base_link on /tf
+  const fs::path path = write_bag("tf_only", spec);
+
+  const SensorLog without = read_rosbag(path);
+  ASSERT_EQ(without.scans.size(), 5U);
+  for (const LaserScan& s : without.scans) EXPECT_FALSE(s.odometry.has_value());
+  EXPECT_TRUE(has_warning(without, "no odometry on /odom: running without odometry"))
+      << joined(without.warnings);
+
+  RosbagOptions options;
+  options.use_tf_odometry = true;
+  const SensorLog with = read_rosbag(path, options);
+  ASSERT_EQ(with.scans.size(), 5U);
+  expect_pose_near(with.scans[2].odometry, Pose2(0.5, 1.0, 0.5 * kPi / 2), 1e-9);
+  expect_pose_near(with.scans[4].odometry, Pose2(1.0, 3.0, 0.75 * kPi), 1e-9);
+  EXPECT_TRUE(has_warning(with, "odometry stamps on /tf (odom -> base_link) are out of time order"))
+      << joined(with.warnings);
+}
+
+TEST(RosbagReader, ScansFarOutsideTheOdometrySpanGetNoOdometry) {
+  TestBagSpec spec;
+  spec.messages = {scan_at(9.0, {1.0F}),         scan_at(9.6, {1.0F}),
+                   odom_at(10.0, 1.0, 0.0, 0.0), odom_at(11.0, 2.0, 0.0, 0.0),
+                   scan_at(11.4, {1.0F}),        scan_at(12.0, {1.0F})};
+  const SensorLog log = read_rosbag(write_bag("outside", spec));
+  ASSERT_EQ(log.scans.size(), 4U);
+  EXPECT_FALSE(log.scans[0].odometry.has_value());
+  expect_pose_near(log.scans[1].odometry, Pose2(1.0, 0.0, 0.0), 1e-12);  // 0.4 s early: held
+  expect_pose_near(log.scans[2].odometry, Pose2(2.0, 0.0, 0.0), 1e-12);
+  EXPECT_FALSE(log.scans[3].odometry.has_value());
+  EXPECT_TRUE(has_warning(log, "2 of 4 scans lie more than 0.5 s outside the odometry time span"))
+      << joined(log.warnings);
+  // No /tf_static: the laser is assumed at the base, and the user is told.
+  EXPECT_TRUE(has_warning(log, "no base_link -> laser transform")) << joined(log.warnings);
+  EXPECT_EQ(log.scans[0].laser_offset.x, 0.0);
+}
+
+TEST(RosbagReader, WrongTopicsAreInputErrorsListingWhatTheBagHas) {
+  const fs::path path = write_bag("topics", small_spec());
+  RosbagOptions options;
+  options.scan_topic = "/base_scan";
+  const std::string missing = input_error_of(path, options);
+  EXPECT_NE(missing.find(path.string()), std::string::npos) << missing;
+  EXPECT_NE(missing.find("/base_scan"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("/scan (sensor_msgs/LaserScan, 5 messages)"), std::string::npos)
+      << missing;
+  EXPECT_NE(missing.find("/odom (nav_msgs/Odometry, 4 messages)"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("/tf_static (tf2_msgs/TFMessage, 1 messages)"), std::string::npos)
+      << missing;
+
+  options.scan_topic = "/odom";
+  const std::string wrong_type = input_error_of(path, options);
+  EXPECT_NE(wrong_type.find("nav_msgs/Odometry"), std::string::npos) << wrong_type;
+  EXPECT_NE(wrong_type.find("sensor_msgs/LaserScan"), std::string::npos) << wrong_type;
+
+  options = {};
+  options.odom_topic = "/scan";
+  const std::string wrong_odom = input_error_of(path, options);
+  EXPECT_NE(wrong_odom.find("nav_msgs/Odometry"), std::string::npos) << wrong_odom;
+}
+
+TEST(RosbagReader, NonFiniteScanGeometryIsAnInputErrorNamingTheField) {
+  TestBagSpec spec = small_spec();
+  spec.messages[3].scan.angle_increment = std::numeric_limits<float>::quiet_NaN();
+  const std::string message = input_error_of(write_bag("nan_increment", spec));
+  EXPECT_NE(message.find("/scan message #2"), std::string::npos) << message;
+  EXPECT_NE(message.find("angle_increment"), std::string::npos) << message;
+}
+
+TEST(RosbagReader, FilesThatAreNotBagsAreInputErrors) {
+  const fs::path dir = fresh_dir("rosbag_not_bags");
+  EXPECT_NE(input_error_of(dir / "missing.bag").find("no such file"), std::string::npos);
+  EXPECT_NE(input_error_of(dir).find("is a directory"), std::string::npos);
+
+  write_file_atomically(dir / "x.bag", "# this is a text file\nFLASER 3 1 2 3\n");
+  const std::string text = input_error_of(dir / "x.bag");
+  EXPECT_NE(text.find((dir / "x.bag").string()), std::string::npos) << text;
+
+  write_file_atomically(dir / "empty.bag", "");
+  EXPECT_NE(input_error_of(dir / "empty.bag").find("empty.bag"), std::string::npos);
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(RosbagReader, TruncatedAndDamagedBagsAreInputErrorsNotCrashes) {
+  TestBagSpec spec = small_spec();
+  spec.compression = TestBagSpec::Compression::Bz2;
+  const fs::path path = write_bag("damaged", spec);
+  const std::string bytes = read_bytes(path);
+  ASSERT_GT(bytes.size(), 1000U);
+  const fs::path dir = path.parent_path();
+  // Every cut: the index at the end goes missing first, then the chunks.
+  for (std::size_t keep = 13; keep < bytes.size(); keep += 97) {
+    const fs::path cut = dir / "cut.bag";
+    write_file_atomically(cut, std::string_view(bytes).substr(0, keep));
+    EXPECT_NE(input_error_of(cut).find("cut.bag"), std::string::npos) << keep;
+  }
+  // Flipped bytes inside the bz2 chunk (the file header record takes the first 4 kB).
+  std::string damaged = bytes;
+  for (std::size_t i = damaged.size() / 3; i < damaged.size() / 3 + 200; ++i)
+    damaged[i] = static_cast<char>(~damaged[i]);
+  write_file_atomically(dir / "flipped.bag", damaged);
+  const std::string flipped = input_error_of(dir / "flipped.bag");
+  EXPECT_NE(flipped.find("flipped.bag: damaged ROS1 bag"), std::string::npos) << flipped;
+}
+
+// Replaces the first occurrence of `from` in the file by `to` (same length).
+void patch_file(const fs::path& path, const std::string& from, const std::string& to) {
+  std::string bytes = read_bytes(path);
+  const std::size_t at = bytes.find(from);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, from.size(), to);
+  write_file_atomically(path, bytes);
+}
+
+std::string le32_bytes(std::uint32_t v) {
+  return {static_cast<char>(v & 0xFF), static_cast<char>((v >> 8) & 0xFF),
+          static_cast<char>((v >> 16) & 0xFF), static_cast<char>(v >> 24)};
+}
+
+TEST(RosbagReader, DamagedIndexOffsetIsAnInputError) {
+  // An uncompressed bag has no checksum: only the structure check stands
+  // between a wrong index offset and rosbag_storage reading out of bounds.
+  const fs::path path = write_bag("bad_offset", small_spec());
+  // The index entry of the first scan: its stamp 10.2 s, then its offset.
+  const std::string stamp = le32_bytes(10) + le32_bytes(200000000);
+  std::string bytes = read_bytes(path);
+  const std::size_t at = bytes.rfind(stamp);  // the index comes after the chunk
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + 8, 4, le32_bytes(3));
+  write_file_atomically(path, bytes);
+  const std::string message = input_error_of(path);
+  EXPECT_NE(message.find("where no message starts"), std::string::npos) << message;
+}
+
+TEST(RosbagReader, DamagedArrayLengthIsAnInputErrorNotAHugeAllocation) {
+  // ros::serialization would size `ranges` from this length (8 GB) before
+  // noticing the message is far shorter.
+  const fs::path path = write_bag("bad_length", small_spec());
+  const std::string ranges =
+      le32_bytes(3) + std::string("\x00\x00\x80\x3f\x00\x00\x00\x40", 8);  // 3, 1.0F, 2.0F
+  patch_file(path, ranges, le32_bytes(0x7FFFFFFF) + ranges.substr(4));
+  const std::string message = input_error_of(path);
+  EXPECT_NE(message.find("bad_length.bag"), std::string::npos) << message;
+  EXPECT_NE(message.find("length field exceeds the message size"), std::string::npos) << message;
+}
+
+// ---------------------------------------------------------------- the real data sets
+
+fs::path shared_data() { return fs::path(DSSWARM_SHARED_DATA); }
+
+// Each real bag is read once per test run (intel takes about a second); the
+// first read reports its speed.
+const SensorLog& real_log(const std::string& name) {
+  static std::map<std::string, SensorLog> cache;
+  auto it = cache.find(name);
+  if (it == cache.end()) {
+    const std::clock_t cpu_start = std::clock();
+    const auto start = std::chrono::steady_clock::now();
+    SensorLog log = read_rosbag(shared_data() / "bags" / (name + ".orig.bag"));
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    std::cout << "[ timing   ] " << name << ".orig.bag: " << log.scans.size() << " scans in "
+              << seconds << " s wall, " << cpu_seconds << " s CPU\n";
+    it = cache.emplace(name, std::move(log)).first;
+  }
+  return it->second;
+}
+
+#define REQUIRE_REAL_BAG(name)                                                 \
+  if (!fs::exists(shared_data() / "bags" / (std::string(name) + ".orig.bag"))) \
+  GTEST_SKIP() << "real data not found at " << (shared_data() / "bags").string()
+
+// One FLASER record of a CARMEN log:
+// FLASER n r1..rn x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
+struct CarmenScan {
+  std::vector<double> ranges;
+  Pose2 odometry;
+  double timestamp = 0.0;
+};
+
+// The FLASER records of a gzip-compressed CARMEN log, in file order.
+std::vector<CarmenScan> read_carmen_scans(const fs::path& path) {
+  std::vector<CarmenScan> scans;
+  gzFile in = gzopen(path.string().c_str(), "rb");
+  if (in == nullptr) return scans;
+  std::vector<char> line(1 << 16);
+  while (gzgets(in, line.data(), static_cast<int>(line.size())) != nullptr) {
+    std::istringstream fields(line.data());
+    std::string kind;
+    std::size_t n = 0;
+    if (!(fields >> kind) || kind != "FLASER" || !(fields >> n)) continue;
+    CarmenScan scan;
+    scan.ranges.resize(n);
+    for (double& r : scan.ranges) fields >> r;
+    double laser_x = 0, laser_y = 0, laser_theta = 0, x = 0, y = 0, theta = 0;
+    fields >> laser_x >> laser_y >> laser_theta >> x >> y >> theta >> scan.timestamp;
+    if (!fields) ADD_FAILURE() << "bad FLASER line in " << path;
+    scan.odometry = Pose2(x, y, theta);
+    scans.push_back(std::move(scan));
+  }
+  gzclose(in);
+  return scans;
+}
+
+// Same scans, stamps, ranges and odometry as the CARMEN log converted from the same bag.
+void expect_matches_carmen(const std::string& name, std::size_t stride) {
+  const fs::path carmen_path = shared_data() / "carmen" / (name + ".log.gz");
+  if (!fs::exists(carmen_path)) GTEST_SKIP() << "real data not found at " << carmen_path.string();
+  const SensorLog& log = real_log(name);
+  const std::vector<CarmenScan> carmen = read_carmen_scans(carmen_path);
+  ASSERT_EQ(carmen.size(), log.scans.size());
+  double worst_range = 0, worst_odometry = 0, worst_stamp = 0;
+  for (std::size_t i = 0; i < carmen.size(); i += stride) {
+    const LaserScan& scan = log.scans[i];
+    worst_stamp = std::max(worst_stamp, std::abs(scan.timestamp - carmen[i].timestamp));
+    ASSERT_EQ(scan.ranges.size(), carmen[i].ranges.size()) << i;
+    for (std::size_t b = 0; b < scan.ranges.size(); ++b) {
+      worst_range = std::max(worst_range, std::abs(scan.ranges[b] - carmen[i].ranges[b]));
+    }
+    ASSERT_TRUE(scan.odometry.has_value()) << i;
+    const Pose2& odo = *scan.odometry;
+    const Pose2& ref = carmen[i].odometry;
+    worst_odometry = std::max({worst_odometry, std::abs(odo.x - ref.x), std::abs(odo.y - ref.y),
+                               std::abs(normalize_angle(odo.theta - ref.theta))});
+  }
+  EXPECT_LT(worst_stamp, 2e-6);  // CARMEN prints microseconds
+  EXPECT_LT(worst_range, 1e-3);
+  EXPECT_LT(worst_odometry, 1e-3);
+}
+
+TEST(RosbagRealData, Intel) {
+  REQUIRE_REAL_BAG("intel");
+  const SensorLog& log = real_log("intel");
+
+  ASSERT_EQ(log.scans.size(), 13631U);
+  for (const LaserScan& s : log.scans) {
+    ASSERT_EQ(s.ranges.size(), 180U);
+    ASSERT_TRUE(s.odometry.has_value());
+  }
+  EXPECT_NEAR(log.scans.front().angle_min, -kPi / 2, 1e-6);
+  EXPECT_NEAR(log.scans.front().angle_increment, kPi / 179, 1e-6);
+  EXPECT_NEAR(log.scans.front().range_max, 80.0, 1e-9);
+  EXPECT_EQ(log.scans.front().laser_offset.x, 0.0);
+  EXPECT_TRUE(has_warning(log, "631 of 13631 scan timestamps run backwards (kept in file order)"))
+      << joined(log.warnings);
+}
+
+TEST(RosbagRealData, IntelMatchesItsCarmenLog) {
+  REQUIRE_REAL_BAG("intel");
+  expect_matches_carmen("intel", 1);  // includes the ~800 scans with glitched stamps
+}
+
+TEST(RosbagRealData, Fr079LaserOffsetFromTfStatic) {
+  REQUIRE_REAL_BAG("fr079");
+  const SensorLog& log = real_log("fr079");
+  ASSERT_EQ(log.scans.size(), 4934U);
+  EXPECT_EQ(log.scans.front().ranges.size(), 360U);
+  for (const LaserScan& s : {log.scans.front(), log.scans.back()}) {
+    EXPECT_NEAR(s.laser_offset.x, 0.04, 1e-9);
+    EXPECT_NEAR(s.laser_offset.y, 0.0, 1e-9);
+    EXPECT_NEAR(s.laser_offset.theta, 0.0, 1e-9);
+  }
+  EXPECT_TRUE(log.warnings.empty()) << joined(log.warnings);
+}
+
+TEST(RosbagRealData, MitCsailMatchesItsCarmenLog) {
+  REQUIRE_REAL_BAG("mit-csail");
+  const SensorLog& log = real_log("mit-csail");
+  ASSERT_EQ(log.scans.size(), 1988U);
+  EXPECT_EQ(log.scans.front().ranges.size(), 361U);
+  EXPECT_NEAR(log.scans.front().angle_increment, kPi / 360, 1e-6);
+  EXPECT_TRUE(log.warnings.empty()) << joined(log.warnings);
+  expect_matches_carmen("mit-csail", 1);
+}
+
+TEST(RosbagRealData, MitCsailFirstScanByHand) {
+  // The first FLASER line, parsed here field by field, against the first scan.
+  REQUIRE_REAL_BAG("mit-csail");
+  const fs::path carmen_path = shared_data() / "carmen" / "mit-csail.log.gz";
+  if (!fs::exists(carmen_path)) GTEST_SKIP() << "real data not found at " << carmen_path.string();
+  const std::vector<CarmenScan> carmen = read_carmen_scans(carmen_path);
+  ASSERT_FALSE(carmen.empty());
+  const LaserScan& first = real_log("mit-csail").scans.front();
+  EXPECT_NEAR(first.timestamp, 1134864629.895182, 2e-6);
+  EXPECT_NEAR(first.timestamp, carmen.front().timestamp, 2e-6);
+  ASSERT_EQ(first.ranges.size(), 361U);
+  EXPECT_NEAR(first.ranges[0], 1.4, 1e-6);
+  EXPECT_NEAR(first.ranges[24], 81.91, 1e-4);
+  EXPECT_FALSE(first.is_valid(first.ranges[24]));  // "no return"
+  expect_pose_near(first.odometry, Pose2(576.536523, 0.106594, -2.255213), 1e-6);
+}
+
+TEST(RosbagRealData, TruncatedRealBagIsAnInputError) {
+  REQUIRE_REAL_BAG("mit-csail");
+  const std::string bytes = read_bytes(shared_data() / "bags" / "mit-csail.orig.bag");
+  ASSERT_GT(bytes.size(), 100'000U);
+  const fs::path cut = fresh_dir("rosbag_truncated_real") / "mit-csail-100k.bag";
+  write_file_atomically(cut, std::string_view(bytes).substr(0, 100'000));
+  const std::string message = input_error_of(cut);
+  EXPECT_NE(message.find("mit-csail-100k.bag"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace dsswarm
