@@ -57,6 +57,8 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
        {{"use_odometry", DSS_FIELD(bool, use_odometry)},
         {"seed", DSS_FIELD(std::uint64_t, seed)},
         {"min_points", DSS_FIELD(int, min_points)},
+        {"odometry_doubt_xy", DSS_FIELD(double, odometry_doubt_xy)},
+        {"odometry_doubt_theta", DSS_FIELD(double, odometry_doubt_theta)},
         {"insert_min_travel", DSS_FIELD(double, insert_min_travel)},
         {"insert_min_rotation", DSS_FIELD(double, insert_min_rotation)}}},
   };

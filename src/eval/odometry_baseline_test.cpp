@@ -39,7 +39,7 @@ Trajectory odometry_at_scans(const fs::path& log) {
   return trajectory;
 }
 
-TEST(OdometryBaseline, ReproducesReferenceScores) {
+TEST(OdometryBaselineRealData, ReproducesReferenceScores) {
   const fs::path data(DSSWARM_SHARED_DATA);
   if (!fs::is_directory(data / "carmen") || !fs::is_directory(data / "relations")) {
     GTEST_SKIP() << "real data not found at " << data;

@@ -102,7 +102,7 @@ TEST(ReadRelations, MalformedLinesNameFileLineAndField) {
   EXPECT_NE(msg.find("absent.relations"), std::string::npos) << msg;
 }
 
-TEST(ReadRelations, RealBenchmarkFiles) {
+TEST(ReadRelationsRealData, BenchmarkFiles) {
   const fs::path dir = fs::path(DSSWARM_SHARED_DATA) / "relations";
   if (!fs::is_directory(dir)) GTEST_SKIP() << "real data not found at " << dir;
   const std::pair<const char*, std::size_t> expected[] = {{"intel", 2984}, {"fr079", 1685}, {"mit-csail", 1172}};

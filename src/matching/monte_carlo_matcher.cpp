@@ -71,33 +71,42 @@ void polish(Search& search, Pose2& best, double& best_score, double step_xy, dou
 }  // namespace
 
 MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<ScanPoint>& points,
-                                     const Pose2& prior) {
-  return match(map, points, std::vector<Pose2>{prior});
+                                     const std::vector<Pose2>& priors) {
+  // Several predictions (odometry, constant velocity, standing still) may
+  // disagree when odometry lags or jumps. Search from each distinct one and
+  // keep the best-scoring answer; the first prior is the one reported as
+  // `prior_score`.
+  std::vector<Pose2> distinct;
+  for (const Pose2& p : priors) {
+    const bool duplicate = std::any_of(distinct.begin(), distinct.end(), [&](const Pose2& q) {
+      return std::hypot(p.x - q.x, p.y - q.y) < config_.min_sigma_xy * 5 &&
+             std::abs(normalize_angle(p.theta - q.theta)) < config_.min_sigma_theta * 5;
+    });
+    if (!duplicate) distinct.push_back(p);
+  }
+  if (distinct.empty()) return {};
+  MatchResult best;
+  int evaluations = 0;
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    const MatchResult r = match_from(map, points, distinct[i]);
+    evaluations += r.evaluations;
+    if (i == 0 || r.score > best.score) best = r;
+  }
+  best.evaluations = evaluations;
+  best.prior_score = score_pose(map.finest(), points, priors.front(), 1, config_.unknown_value);
+  return best;
 }
 
 MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<ScanPoint>& points,
-                                     const std::vector<Pose2>& priors) {
-  MatchResult result;
-  if (priors.empty()) return result;
-  result.pose = priors.front();
-  if (points.empty()) return result;
+                                     const Pose2& prior) {
+  return match_from(map, points, prior);
+}
 
-  // Several predictions (odometry, constant velocity, standing still) may
-  // disagree when odometry lags or jumps; start from the one the coarsest
-  // map likes best. The first prior is the one reported as `prior_score`.
-  Pose2 prior = priors.front();
-  if (priors.size() > 1) {
-    const DsGrid& coarse = map.level(map.levels() - 1);
-    double best_prior_score = -1.0;
-    for (const Pose2& p : priors) {
-      const double s = score_pose(coarse, points, p, 1, config_.unknown_value);
-      ++result.evaluations;
-      if (s > best_prior_score) {
-        best_prior_score = s;
-        prior = p;
-      }
-    }
-  }
+MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vector<ScanPoint>& points,
+                                          const Pose2& prior) {
+  MatchResult result;
+  result.pose = prior;
+  if (points.empty()) return result;
 
   const int levels = map.levels();
   // Coarse levels are cheap to search but only place the scan roughly; give
@@ -148,7 +157,7 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
     }
     if (level == 0) result.score = best_score;
   }
-  result.prior_score = score_pose(map.finest(), points, priors.front(), 1, config_.unknown_value);
+  result.prior_score = score_pose(map.finest(), points, prior, 1, config_.unknown_value);
   result.pose = best;
   return result;
 }

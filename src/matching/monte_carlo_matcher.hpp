@@ -46,12 +46,14 @@ class MonteCarloMatcher {
   explicit MonteCarloMatcher(const MatcherConfig& config = {}, std::uint64_t seed = 1);
 
   MatchResult match(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
-  // Starts from whichever of `priors` scores best on the coarsest level.
+  // Searches from each distinct prior and returns the best-scoring result.
   MatchResult match(const MultiResMap& map, const std::vector<ScanPoint>& points, const std::vector<Pose2>& priors);
 
   const MatcherConfig& config() const { return config_; }
 
  private:
+  MatchResult match_from(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
+
   MatcherConfig config_;
   Rng rng_;
 };

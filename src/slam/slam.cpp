@@ -50,12 +50,19 @@ SlamStep Slam::process(const LaserScan& scan) {
   const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
   step.pose = step.prior;
   if (!first && enough_points) {
-    // Odometry can lag and then jump (intel does both): also try the
-    // constant-velocity prediction and standing still, and start from the
-    // best of them.
+    // Odometry can lag and then jump (intel and mit-csail do both). When it
+    // disagrees sharply with a constant-velocity prediction, search from both
+    // and keep the better match. Only then: the score cannot reliably tell a
+    // small true motion from none (a young map is sparse, and the last scan's
+    // own viewpoint always fits it best), so an always-on alternative would
+    // pull a moving robot back to where it was.
     std::vector<Pose2> priors{step.prior};
-    if (previous_pose_) priors.push_back(pose_ * between(*previous_pose_, pose_));
-    priors.push_back(pose_);
+    if (previous_pose_ && config_.use_odometry) {
+      const Pose2 constant_velocity = pose_ * between(*previous_pose_, pose_);
+      const Pose2 d = between(step.prior, constant_velocity);
+      if (std::hypot(d.x, d.y) > config_.odometry_doubt_xy || std::abs(d.theta) > config_.odometry_doubt_theta)
+        priors.push_back(constant_velocity);
+    }
     const MatchResult m = matcher_.match(map_, points, priors);
     step.pose = m.pose;
     step.score = m.score;

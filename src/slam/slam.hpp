@@ -27,6 +27,10 @@ struct SlamConfig {
   // Insert a matched scan into the map only when the robot has moved this much
   // since the last insertion: a robot standing still would otherwise pile
   // evidence from one viewpoint, making its noise look certain.
+  // When the odometry prediction and the constant-velocity prediction differ
+  // by more than this, the matcher searches from both (odometry glitches).
+  double odometry_doubt_xy = 0.2;       // m
+  double odometry_doubt_theta = 0.15;   // rad
   double insert_min_travel = 0.0;       // m
   double insert_min_rotation = 0.0;     // rad
 
