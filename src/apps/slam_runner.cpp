@@ -31,7 +31,7 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
     const LaserScan& scan = log.scans[i];
     const SlamStep step = slam.process(scan);
     result.trajectory.push_back({scan.timestamp, step.pose});
-    if (std::getenv("DSS_STEPS")) fmt::print(stderr, "STEP {} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f}\n", i, step.prior.x, step.prior.y, step.prior.theta, step.pose.x, step.pose.y, step.pose.theta, step.score);
+    if (std::getenv("DSS_STEPS")) fmt::print(stderr, "STEP {} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.3f} {}\n", i, step.prior.x, step.prior.y, step.prior.theta, step.pose.x, step.pose.y, step.pose.theta, step.score, step.inlier_ratio, step.matched ? 1 : 0);
     if (!label.empty() && (i & 63) == 0 && Clock::now() >= next_report) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const double rate = static_cast<double>(i + 1) / elapsed;
@@ -53,6 +53,8 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   j["source"] = log.source;
   j["scans_read"] = result.scans_read;
   j["scans_matched"] = result.scans_matched;
+  j["recovery_searches"] = slam.recoveries();
+  j["matches_rejected"] = slam.matches_rejected();
   j["wall_seconds"] = result.wall_seconds;
   j["scans_per_second"] = result.wall_seconds > 0 ? static_cast<double>(result.scans_read) / result.wall_seconds : 0.0;
   j["read_seconds"] = read_seconds;

@@ -60,3 +60,25 @@ TEST(DsGrid, RasterCoversEvidenceWithRowZeroAtLowestY) {
 
 }  // namespace
 }  // namespace dsswarm
+
+namespace dsswarm {
+namespace {
+
+TEST(DsGrid, QuadMatchesFourLookupsInsideAndAcrossTiles) {
+  DsGrid g(0.05);
+  for (int y = -70; y < 70; y += 3)
+    for (int x = -70; x < 70; x += 2) g.mutable_at({x, y}) = {0.001f * static_cast<float>(x + 70), 0.0005f * static_cast<float>(y + 70)};
+  for (const CellIndex c : {CellIndex{0, 0}, CellIndex{62, 5}, CellIndex{63, 5}, CellIndex{5, 63}, CellIndex{63, 63},
+                            CellIndex{-1, -1}, CellIndex{-65, 10}, CellIndex{500, 500}}) {
+    DsMass q[4];
+    g.quad(c, q);
+    const CellIndex cells[4] = {c, {c.x + 1, c.y}, {c.x, c.y + 1}, {c.x + 1, c.y + 1}};
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(q[k].occupied, g.at(cells[k]).occupied) << c.x << "," << c.y << " #" << k;
+      EXPECT_EQ(q[k].free, g.at(cells[k]).free) << c.x << "," << c.y << " #" << k;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dsswarm

@@ -42,6 +42,31 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
       });
     }
     const bool splat = level > 0 || config_.splat_fine_hits;
+    if (!splat && config_.surface_gap > 0.0) {
+      // Neighbouring returns closer than `surface_gap` lie on one surface:
+      // mark the cells between them as (weakly) occupied too. Otherwise a
+      // wall seen at a grazing angle is a dotted line whose dots sit exactly
+      // where this viewpoint's beams ended, and the next scan, taken a few
+      // centimetres further on, fits the map best by pretending not to have
+      // moved.
+      const DsMass between_hits{hit.occupied * config_.surface_mass_factor, 0.0f};
+      for (std::size_t i = 1; i < hits.size(); ++i) {
+        const Eigen::Vector2d segment = hits[i] - hits[i - 1];
+        const double length = segment.norm();
+        if (length > config_.surface_gap || length == 0.0) continue;
+        // A segment running almost along the beams is a depth jump (a chair
+        // leg in front of a wall), not a surface: joining it would draw a
+        // phantom wall towards the robot.
+        const Eigen::Vector2d beam = (0.5 * (hits[i] + hits[i - 1]) - origin).normalized();
+        if (std::abs(beam.dot(segment) / length) > config_.surface_max_cos) continue;
+        const CellIndex end = grid.cell_of(hits[i]);
+        traverse_ray(hits[i - 1], hits[i], grid.resolution(), [&](CellIndex c) {
+          if (c == end) return;
+          DsMass& m = grid.mutable_at(c);
+          m = ev.update(m, between_hits);
+        });
+      }
+    }
     for (const Eigen::Vector2d& h : hits) {
       if (!splat) {
         DsMass& m = grid.mutable_at(grid.cell_of(h));

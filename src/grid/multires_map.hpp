@@ -24,6 +24,14 @@ struct MapConfig {
   // Spread hits bilinearly over four cells on the finest level too (coarse
   // levels always do; see insert_scan).
   bool splat_fine_hits = false;
+  // Fine level: consecutive returns closer than this (m) are joined into a
+  // surface, and the cells between them get `surface_mass_factor` × the hit
+  // mass (0 disables).
+  double surface_gap = 0.25;
+  float surface_mass_factor = 0.5f;
+  // ... unless the segment runs within acos(surface_max_cos) of the beam
+  // direction (a depth discontinuity rather than a surface).
+  double surface_max_cos = 0.95;
 
   void validate() const;
 };

@@ -16,6 +16,10 @@
 
 namespace dsswarm {
 
+namespace matcher_detail {
+struct Search;
+}
+
 struct MatcherConfig {
   int evaluations = 240;         // pose evaluations per scan, over all levels
   double sigma_xy = 0.10;        // m: initial spread on the coarsest level
@@ -24,9 +28,18 @@ struct MatcherConfig {
   int patience = 10;             // failures in a row before the spread halves
   double min_sigma_xy = 0.002;   // spreads never shrink below these
   double min_sigma_theta = 0.0005;
+  // The finest level's random phase stops once the spread is below this share
+  // of its cell size (the budget is a ceiling, not a quota).
+  double converged_fraction = 0.1;
   // Evaluations per level kept for the final deterministic coordinate ascent.
   int polish_evaluations = 36;
   double polish_step_theta = 0.005;  // rad, first θ step on the finest level (doubles per level)
+  // Motion prior: every candidate's score is reduced by
+  // prior_weight × (|Δxy|²/prior_sigma_xy² + Δθ²/prior_sigma_theta²) relative
+  // to the prior it was searched from (0 disables).
+  double prior_weight = 0.01;
+  double prior_sigma_xy = 0.1;     // m
+  double prior_sigma_theta = 0.1;  // rad
   // Share of a cell's unknown mass that counts as occupancy when scoring
   // (0: only evidence of obstacles scores; 0.5: pignistic occupancy).
   float unknown_value = 0.0f;
@@ -53,6 +66,9 @@ class MonteCarloMatcher {
 
  private:
   MatchResult match_from(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
+  // Random phase then coordinate ascent on one level, updating the best pose and the spreads.
+  void search_level(matcher_detail::Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
+                    double& sigma_th);
 
   MatcherConfig config_;
   Rng rng_;

@@ -17,11 +17,6 @@ namespace dsswarm {
 // share `unknown_value` of its unknown mass. With 0 only evidence of an
 // obstacle counts, so a scan is not rewarded for drifting into unexplored
 // space; with 0.5 this is the pignistic occupancy used for display.
-inline float cell_value(const DsGrid& grid, CellIndex c, float unknown_value) {
-  const DsMass m = grid.at(c);
-  return m.occupied + unknown_value * m.unknown();
-}
-
 // Cell value at a world point, bilinear between cell centres.
 inline float interpolated_occupancy(const DsGrid& grid, double wx, double wy, float unknown_value) {
   const double inv = 1.0 / grid.resolution();
@@ -29,9 +24,10 @@ inline float interpolated_occupancy(const DsGrid& grid, double wx, double wy, fl
   const double fx = std::floor(gx), fy = std::floor(gy);
   const auto x0 = static_cast<std::int32_t>(fx), y0 = static_cast<std::int32_t>(fy);
   const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
-  const float o00 = cell_value(grid, {x0, y0}, unknown_value), o10 = cell_value(grid, {x0 + 1, y0}, unknown_value);
-  const float o01 = cell_value(grid, {x0, y0 + 1}, unknown_value),
-              o11 = cell_value(grid, {x0 + 1, y0 + 1}, unknown_value);
+  DsMass q[4];
+  grid.quad({x0, y0}, q);
+  auto value = [unknown_value](const DsMass& m) { return m.occupied + unknown_value * m.unknown(); };
+  const float o00 = value(q[0]), o10 = value(q[1]), o01 = value(q[2]), o11 = value(q[3]);
   return (1 - ay) * ((1 - ax) * o00 + ax * o10) + ay * ((1 - ax) * o01 + ax * o11);
 }
 
@@ -48,6 +44,44 @@ inline double score_pose(const DsGrid& grid, const std::vector<ScanPoint>& point
     weights += p.weight;
   }
   return weights > 0.0 ? sum / weights : 0.0;
+}
+
+}  // namespace dsswarm
+
+namespace dsswarm {
+
+// How well a placed scan agrees with the map, independent of how much of the
+// map is new: of the points that land where the map has evidence (their cell
+// or a neighbour is not vacuous), the share that land on or next to a cell
+// believed more occupied than free. A correct match keeps most points on
+// walls; a wrong one puts them in space the map has seen to be free. Points
+// in unexplored space count for neither, so entering a new room is no failure.
+struct MatchQuality {
+  double known_fraction = 0.0;  // weight share of points that land on known cells
+  double inlier_ratio = 1.0;    // of those, the weight share on or next to an obstacle
+};
+
+inline MatchQuality match_quality(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
+  constexpr float kKnown = 0.1f;      // evidence mass that makes a cell "seen"
+  constexpr float kObstacle = 0.15f;  // occupied mass (and more than free) that makes it an obstacle
+  double total = 0.0, known = 0.0, inliers = 0.0;
+  for (const ScanPoint& p : points) {
+    const CellIndex c = grid.cell_of(pose * Eigen::Vector2d(p.x, p.y));
+    bool seen = false, obstacle = false;
+    for (int dy = -1; dy <= 1 && !obstacle; ++dy)
+      for (int dx = -1; dx <= 1 && !obstacle; ++dx) {
+        const DsMass m = grid.at({c.x + dx, c.y + dy});
+        seen = seen || (m.occupied + m.free) >= kKnown;
+        obstacle = m.occupied >= kObstacle && m.occupied > m.free;
+      }
+    total += p.weight;
+    if (seen || obstacle) known += p.weight;
+    if (obstacle) inliers += p.weight;
+  }
+  MatchQuality q;
+  if (total > 0.0) q.known_fraction = known / total;
+  if (known > 0.0) q.inlier_ratio = inliers / known;
+  return q;
 }
 
 }  // namespace dsswarm

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "matching/scan_scorer.hpp"
 
 namespace dsswarm {
 
@@ -15,7 +16,10 @@ void SlamConfig::validate() const {
 }
 
 Slam::Slam(const SlamConfig& config)
-    : config_(config), map_(config.map), matcher_(config.matcher, config.seed) {
+    : config_(config),
+      map_(config.map),
+      matcher_(config.matcher, config.seed),
+      recovery_matcher_(recovery_config(config.matcher), config.seed + 1) {
   config_.validate();
 }
 
@@ -24,6 +28,15 @@ bool Slam::odometry_stale(const LaserScan& scan) const {
   // stalled odometry stream, not a robot that stopped dead.
   return scan.odometry && anchor_odometry_ && odometry_moving_ && scan.odometry->x == anchor_odometry_->x &&
          scan.odometry->y == anchor_odometry_->y && scan.odometry->theta == anchor_odometry_->theta;
+}
+
+MatcherConfig Slam::recovery_config(const MatcherConfig& normal) {
+  MatcherConfig c = normal;
+  c.evaluations = normal.evaluations * 4;
+  c.sigma_xy = normal.sigma_xy * 3;
+  c.sigma_theta = normal.sigma_theta * 4;
+  c.patience = normal.patience * 2;
+  return c;
 }
 
 Pose2 Slam::predict(const LaserScan& scan) const {
@@ -63,14 +76,51 @@ SlamStep Slam::process(const LaserScan& scan) {
       if (std::hypot(d.x, d.y) > config_.odometry_doubt_xy || std::abs(d.theta) > config_.odometry_doubt_theta)
         priors.push_back(constant_velocity);
     }
-    const MatchResult m = matcher_.match(map_, points, priors);
-    step.pose = m.pose;
+    MatchResult m = matcher_.match(map_, points, priors);
+    MatchQuality q = match_quality(map_.finest(), points, m.pose);
+    // A failure shows as a sudden drop of the inlier ratio below what recent
+    // matches achieved (an absolute bar would reject whole regions whose map
+    // is merely fuzzy, e.g. walls first seen from far away). After a few
+    // rejections in a row the map, not the match, is likely what changed:
+    // accept again rather than drift on odometry forever.
+    const double bar = std::max(config_.verify_min_inliers, config_.verify_relative * inlier_average_);
+    auto rejected = [&](const MatchQuality& mq) {
+      return consecutive_rejections_ < config_.verify_max_consecutive &&
+             mq.known_fraction >= config_.verify_min_known && mq.inlier_ratio < bar;
+    };
+    if (rejected(q)) {
+      // Recovery: a wider search from every prediction we have (odometry,
+      // constant velocity, standing still); keep the most consistent answer.
+      priors.push_back(pose_);
+      const MatchResult wide = recovery_matcher_.match(map_, points, priors);
+      const MatchQuality wq = match_quality(map_.finest(), points, wide.pose);
+      if (wq.inlier_ratio > q.inlier_ratio) {
+        m = wide;
+        q = wq;
+      }
+      ++recoveries_;
+    }
     step.score = m.score;
-    step.matched = true;
-    ++matched_;
+    step.inlier_ratio = q.inlier_ratio;
+    // Verify before trusting: a match that puts much of the scan into space
+    // the map has seen free is a failure (a wrong local maximum). Keep the
+    // prediction instead and keep the scan out of the map, so one bad match
+    // cannot corrupt every later one.
+    if (rejected(q)) {
+      step.pose = step.prior;
+      ++rejected_;
+      ++consecutive_rejections_;
+    } else {
+      step.pose = m.pose;
+      step.matched = true;
+      ++matched_;
+      consecutive_rejections_ = 0;
+      if (q.known_fraction >= config_.verify_min_known)
+        inlier_average_ = matched_ <= 1 ? q.inlier_ratio : 0.9 * inlier_average_ + 0.1 * q.inlier_ratio;
+    }
   }
 
-  if (enough_points) {
+  if (enough_points && (first || step.matched)) {
     bool insert = !last_insert_pose_;
     if (last_insert_pose_) {
       const Pose2 d = between(*last_insert_pose_, step.pose);

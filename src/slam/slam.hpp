@@ -31,6 +31,14 @@ struct SlamConfig {
   // by more than this, the matcher searches from both (odometry glitches).
   double odometry_doubt_xy = 0.2;       // m
   double odometry_doubt_theta = 0.15;   // rad
+  // Match verification (see match_quality): a match is rejected when at least
+  // `verify_min_known` of its points land on known cells and its inlier ratio
+  // is below max(verify_min_inliers, verify_relative × the running average of
+  // accepted matches); never more than `verify_max_consecutive` in a row.
+  double verify_min_known = 0.3;
+  double verify_min_inliers = 0.3;
+  double verify_relative = 0.75;
+  int verify_max_consecutive = 10;
   double insert_min_travel = 0.0;       // m
   double insert_min_rotation = 0.0;     // rad
 
@@ -40,8 +48,9 @@ struct SlamConfig {
 struct SlamStep {
   Pose2 pose;            // estimated robot base pose in the map frame
   Pose2 prior;           // prediction before matching
-  bool matched = false;  // false: too few points (pose = prior)
+  bool matched = false;  // false: too few points or match rejected (pose = prior)
   double score = 0.0;    // matcher score on the finest level
+  double inlier_ratio = 0.0;  // verification measure of the match (see match_quality)
 };
 
 class Slam {
@@ -54,15 +63,20 @@ class Slam {
   const Pose2& pose() const { return pose_; }
   std::size_t scans_processed() const { return processed_; }
   std::size_t scans_matched() const { return matched_; }
+  std::size_t matches_rejected() const { return rejected_; }
+  std::size_t recoveries() const { return recoveries_; }
   const SlamConfig& config() const { return config_; }
 
  private:
   Pose2 predict(const LaserScan& scan) const;
   bool odometry_stale(const LaserScan& scan) const;
+  // A wider, costlier search for scans whose normal match fails verification.
+  static MatcherConfig recovery_config(const MatcherConfig& normal);
 
   SlamConfig config_;
   MultiResMap map_;
   MonteCarloMatcher matcher_;
+  MonteCarloMatcher recovery_matcher_;
   Pose2 pose_;
   std::optional<Pose2> previous_pose_;  // for the constant-velocity prior
   // Last odometry reading that moved, and our pose at that scan. Increments
@@ -74,6 +88,10 @@ class Slam {
   std::optional<Pose2> last_insert_pose_;
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
+  std::size_t rejected_ = 0;
+  std::size_t recoveries_ = 0;
+  int consecutive_rejections_ = 0;
+  double inlier_average_ = 0.0;  // running average inlier ratio of accepted matches
 };
 
 }  // namespace dsswarm
