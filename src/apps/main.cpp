@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "apps/eval_command.hpp"
+#include "apps/filter_command.hpp"
 #include "apps/run_command.hpp"
 #include "common/errors.hpp"
 
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "dsswarm 0.1.0");
   dsswarm::add_demo_command(app);
   dsswarm::add_run_command(app);
+  dsswarm::add_filter_command(app);
   dsswarm::add_eval_command(app);
   dsswarm::add_config_command(app);
   try {

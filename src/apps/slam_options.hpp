@@ -13,6 +13,7 @@ struct SlamOptions {
   std::string config_file;           // JSON, see `dsswarm config`
   std::optional<std::uint64_t> seed;
   bool no_odometry = false;
+  bool filter = false;
   std::optional<int> evaluations;
   std::optional<double> resolution;
 

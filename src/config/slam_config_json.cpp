@@ -28,6 +28,17 @@ Field field(Member member) {
 
 const std::map<std::string, std::map<std::string, Field>>& fields() {
   static const std::map<std::string, std::map<std::string, Field>> table = {
+      {"filter",
+       {{"enabled", DSS_FIELD(bool, use_filter)},
+        {"columns", DSS_FIELD(int, filter.columns)},
+        {"pair_threshold", DSS_FIELD(double, filter.pair_threshold)},
+        {"window_constant", DSS_FIELD(double, filter.window_constant)},
+        {"min_window", DSS_FIELD(int, filter.min_window)},
+        {"max_window", DSS_FIELD(int, filter.max_window)},
+        {"fixed_window", DSS_FIELD(int, filter.fixed_window)},
+        {"max_consecutive_drops", DSS_FIELD(int, filter.max_consecutive_drops)},
+        {"max_translation", DSS_FIELD(double, filter.max_translation)},
+        {"max_rotation", DSS_FIELD(double, filter.max_rotation)}}},
       {"map",
        {{"resolution", DSS_FIELD(double, map.resolution)},
         {"levels", DSS_FIELD(int, map.levels)},

@@ -1,5 +1,6 @@
 #include "slam/slam.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include "common/errors.hpp"
@@ -8,6 +9,7 @@
 namespace dsswarm {
 
 void SlamConfig::validate() const {
+  filter.validate();
   map.validate();
   matcher.validate();
   if (min_points < 1) throw ConfigError("slam.min_points must be >= 1");
@@ -19,7 +21,8 @@ Slam::Slam(const SlamConfig& config)
     : config_(config),
       map_(config.map),
       matcher_(config.matcher, config.seed),
-      recovery_matcher_(recovery_config(config.matcher), config.seed + 1) {
+      recovery_matcher_(recovery_config(config.matcher), config.seed + 1),
+      filter_(config.filter) {
   config_.validate();
 }
 
@@ -58,6 +61,21 @@ SlamStep Slam::process(const LaserScan& scan) {
   if (first && config_.use_odometry && scan.odometry) pose_ = *scan.odometry;  // map frame = odometry frame
   step.prior = first ? pose_ : predict(scan);
   ++processed_;
+
+  if (config_.use_filter) {
+    // Timed here because the filter's cost is part of the price of a scan.
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool keep = filter_.decide(scan).keep;
+    filter_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!keep && !first) {
+      // Redundant: the pose follows the motion prediction (odometry from the
+      // last matched pose), and nothing enters the map.
+      step.pose = step.prior;
+      step.dropped = true;
+      advance(scan, step.pose);
+      return step;
+    }
+  }
 
   const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
   const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
@@ -133,17 +151,21 @@ SlamStep Slam::process(const LaserScan& scan) {
     }
   }
 
+  advance(scan, step.pose);
+  return step;
+}
+
+void Slam::advance(const LaserScan& scan, const Pose2& pose) {
   if (scan.odometry && !odometry_stale(scan)) {
     if (anchor_odometry_) {
       const Pose2 d = between(*anchor_odometry_, *scan.odometry);
       odometry_moving_ = d.x != 0.0 || d.y != 0.0 || d.theta != 0.0;
     }
     anchor_odometry_ = scan.odometry;
-    anchor_pose_ = step.pose;
+    anchor_pose_ = pose;
   }
   previous_pose_ = pose_;
-  pose_ = step.pose;
-  return step;
+  pose_ = pose;
 }
 
 }  // namespace dsswarm

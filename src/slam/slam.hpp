@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "filter/scan_filter.hpp"
 #include "geometry/pose2.hpp"
 #include "grid/multires_map.hpp"
 #include "matching/monte_carlo_matcher.hpp"
@@ -18,6 +19,9 @@
 namespace dsswarm {
 
 struct SlamConfig {
+  // Scan filter in front of the matcher (off by default; `run --filter`).
+  bool use_filter = false;
+  ScanFilterConfig filter;
   MapConfig map;
   MatcherConfig matcher;
   PointWeightConfig points;
@@ -48,7 +52,8 @@ struct SlamConfig {
 struct SlamStep {
   Pose2 pose;            // estimated robot base pose in the map frame
   Pose2 prior;           // prediction before matching
-  bool matched = false;  // false: too few points or match rejected (pose = prior)
+  bool matched = false;  // false: too few points, match rejected, or dropped (pose = prior)
+  bool dropped = false;  // the scan filter judged it redundant: not matched, not inserted
   double score = 0.0;    // matcher score on the finest level
   double inlier_ratio = 0.0;  // verification measure of the match (see match_quality)
 };
@@ -65,10 +70,14 @@ class Slam {
   std::size_t scans_matched() const { return matched_; }
   std::size_t matches_rejected() const { return rejected_; }
   std::size_t recoveries() const { return recoveries_; }
+  std::size_t scans_dropped() const { return filter_.dropped(); }
+  double filter_seconds() const { return filter_seconds_; }
   const SlamConfig& config() const { return config_; }
 
  private:
   Pose2 predict(const LaserScan& scan) const;
+  // Bookkeeping after every scan: odometry anchor and constant-velocity state.
+  void advance(const LaserScan& scan, const Pose2& pose);
   bool odometry_stale(const LaserScan& scan) const;
   // A wider, costlier search for scans whose normal match fails verification.
   static MatcherConfig recovery_config(const MatcherConfig& normal);
@@ -77,6 +86,8 @@ class Slam {
   MultiResMap map_;
   MonteCarloMatcher matcher_;
   MonteCarloMatcher recovery_matcher_;
+  ScanFilter filter_;
+  double filter_seconds_ = 0.0;
   Pose2 pose_;
   std::optional<Pose2> previous_pose_;  // for the constant-velocity prior
   // Last odometry reading that moved, and our pose at that scan. Increments

@@ -123,3 +123,40 @@ TEST(Slam, ScanWithoutValidPointsKeepsThePrior) {
 
 }  // namespace
 }  // namespace dsswarm
+
+namespace dsswarm {
+namespace {
+
+TEST(Slam, FilterDropsRedundantScansYetEveryScanGetsAPose) {
+  // A robot that stands still for 60 scans, then drives: the standing scans
+  // are redundant; dropped scans still get the odometry-propagated pose.
+  const Drive d = drive();
+  std::vector<LaserScan> scans;
+  for (int k = 0; k < 60; ++k) {
+    LaserScan s = d.scans[0];
+    s.timestamp = -6.0 + 0.1 * k;
+    scans.push_back(s);
+  }
+  for (const auto& s : d.scans) scans.push_back(s);
+  SlamConfig cfg;
+  cfg.use_filter = true;
+  Slam slam(cfg);
+  std::size_t dropped = 0;
+  for (const auto& s : scans) {
+    const SlamStep step = slam.process(s);
+    EXPECT_TRUE(std::isfinite(step.pose.x));
+    if (step.dropped) {
+      ++dropped;
+      EXPECT_FALSE(step.matched);
+      EXPECT_EQ(step.pose.x, step.prior.x);
+    }
+  }
+  EXPECT_EQ(dropped, slam.scans_dropped());
+  EXPECT_GE(dropped, 40u);  // most of the standing scans
+  EXPECT_GT(slam.filter_seconds(), 0.0);
+  const Pose2 e = between(d.truth.back(), slam.pose());
+  EXPECT_LT(std::hypot(e.x, e.y), 0.1);  // still tracks once moving
+}
+
+}  // namespace
+}  // namespace dsswarm
