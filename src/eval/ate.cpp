@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <fmt/format.h>
 
+#include "common/median.hpp"
+
 #include "common/errors.hpp"
 #include "eval/trajectory_lookup.hpp"
 
@@ -30,14 +32,6 @@ Pose2 fit_rigid_transform(const Eigen::Matrix2Xd& from, const Eigen::Matrix2Xd& 
   return {t.x(), t.y(), theta};
 }
 
-double median_of(std::vector<double> values) {  // values non-empty
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return 0.5 * (lower + upper);
-}
 
 std::string span_of(const TimestampIndex& index) {
   return index.empty() ? std::string("empty") : fmt::format("[{:.6f}, {:.6f}]", index.earliest(), index.latest());
@@ -85,7 +79,7 @@ AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& ground_trut
   const double count = static_cast<double>(errors.size());
   result.mean = sum / count;
   result.rmse = std::sqrt(sum_sq / count);
-  result.median = median_of(std::move(errors));
+  result.median = median_in_place(errors);
   return result;
 }
 

@@ -11,16 +11,6 @@ int default_column_count(std::size_t beams) {
   return static_cast<int>(std::clamp(scaled, 15.0, 30.0));
 }
 
-double median_in_place(std::span<double> values) {
-  if (values.empty()) return 0.0;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  // After nth_element everything before `mid` is <= upper; the lower middle is their maximum.
-  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return 0.5 * (lower + upper);
-}
 
 namespace {
 

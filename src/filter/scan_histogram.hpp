@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "common/median.hpp"
 #include "sensor/laser_scan.hpp"
 
 namespace dsswarm {
@@ -33,10 +34,6 @@ struct HistogramSpec {
 // chapter's lidar, 15 or 30 recommended there), scaled with the beam count and
 // kept within [15, 30]: clamp(round(30 n / 1000), 15, 30).
 int default_column_count(std::size_t beams);
-
-// Median of `values` (mean of the two middle ones for an even count); reorders
-// `values`. 0 for an empty span.
-double median_in_place(std::span<double> values);
 
 // The histogram of `scan` (see HistogramBinning). Invalid readings (NaN, inf,
 // <= range_min, >= range_max) are skipped. A sector without any valid beam
