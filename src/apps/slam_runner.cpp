@@ -4,7 +4,6 @@
 #include <sys/resource.h>
 
 #include <chrono>
-#include <cstdlib>
 
 #include "config/slam_config_json.hpp"
 #include "io/atomic_file.hpp"
@@ -31,7 +30,6 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
     const LaserScan& scan = log.scans[i];
     const SlamStep step = slam.process(scan);
     result.trajectory.push_back({scan.timestamp, step.pose});
-    if (std::getenv("DSS_STEPS")) fmt::print(stderr, "STEP {} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.3f} {}\n", i, step.prior.x, step.prior.y, step.prior.theta, step.pose.x, step.pose.y, step.pose.theta, step.score, step.inlier_ratio, step.matched ? 1 : 0);
     if (!label.empty() && (i & 63) == 0 && Clock::now() >= next_report) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const double rate = static_cast<double>(i + 1) / elapsed;

@@ -16,8 +16,8 @@
 namespace dsswarm {
 
 struct EvidenceModel {
-  float hit_occupied = 0.35f;  // mass on {occupied} for the cell a beam ends in
-  float pass_free = 0.2f;      // mass on {free} for each cell a beam passes through
+  float hit_occupied = 0.4f;   // mass on {occupied} for the cell a beam ends in
+  float pass_free = 0.05f;     // mass on {free} for each cell a beam passes through
   float min_unknown = 0.02f;   // floor on a cell's unknown mass after combination
 
   DsMass hit() const { return {hit_occupied, 0.0f}; }

@@ -16,11 +16,18 @@ TEST(MultiResMap, BeamMarksHitOccupiedAndPathFreeOnEveryLevel) {
   MultiResMap map(MapConfig{0.05, 2, {}, true, false});
   const std::vector<ScanPoint> pts = {{2.0f, 0.0f, 1.0f}};
   map.insert_scan(Pose2(0.01, 0.01, 0.0), Pose2(), pts);
+  const EvidenceModel ev;
   for (int l = 0; l < 2; ++l) {
     const DsGrid& g = map.level(l);
-    // Coarse levels spread a hit over the four nearest cells.
-    EXPECT_GT(g.at(g.cell_of({2.01, 0.01})).occupied, l == 0 ? 0.3f : 0.05f) << "level " << l;
-    EXPECT_GT(g.at(g.cell_of({1.0, 0.01})).free, 0.1f) << "level " << l;  // free_space_on_coarse_levels
+    // One hit: exactly the hit mass on level 0; coarse levels spread it over
+    // the four nearest cells, so the cell holding the point gets a share.
+    if (l == 0) {
+      EXPECT_NEAR(g.at(g.cell_of({2.01, 0.01})).occupied, ev.hit_occupied, 1e-6);
+    } else {
+      EXPECT_GT(g.at(g.cell_of({2.01, 0.01})).occupied, 0.1f * ev.hit_occupied) << "level " << l;
+    }
+    // One pass (free_space_on_coarse_levels): exactly the free mass.
+    EXPECT_NEAR(g.at(g.cell_of({1.0, 0.01})).free, ev.pass_free, 1e-6) << "level " << l;
     EXPECT_FLOAT_EQ(g.at(g.cell_of({1.0, 1.0})).unknown(), 1.0f);
   }
 }
@@ -30,10 +37,11 @@ TEST(MultiResMap, ScanIsPlacedByRobotPoseAndLaserOffset) {
   const std::vector<ScanPoint> pts = {{1.0f, 0.0f, 1.0f}};  // base frame
   map.insert_scan(Pose2(5.0, 5.0, std::numbers::pi / 2), Pose2(0.2, 0.0, 0.0), pts);
   const DsGrid& g = map.finest();
-  EXPECT_GT(g.at(g.cell_of({5.0, 6.0})).occupied, 0.3f);
+  const EvidenceModel ev;
+  EXPECT_NEAR(g.at(g.cell_of({5.0, 6.0})).occupied, ev.hit_occupied, 1e-6);
   // The beam starts at the laser (0.2 m ahead of the base): cells behind it stay unknown.
   EXPECT_FLOAT_EQ(g.at(g.cell_of({5.0, 5.1})).unknown(), 1.0f);
-  EXPECT_GT(g.at(g.cell_of({5.0, 5.5})).free, 0.1f);
+  EXPECT_NEAR(g.at(g.cell_of({5.0, 5.5})).free, ev.pass_free, 1e-6);
 }
 
 TEST(MultiResMap, RejectsBadConfig) {

@@ -15,6 +15,12 @@ void SlamConfig::validate() const {
   if (min_points < 1) throw ConfigError("slam.min_points must be >= 1");
   if (insert_min_travel < 0.0 || insert_min_rotation < 0.0)
     throw ConfigError("slam.insert_min_travel and insert_min_rotation must be >= 0");
+  if (!(odometry_doubt_xy > 0.0) || !(odometry_doubt_theta > 0.0))
+    throw ConfigError("slam.odometry_doubt_xy and odometry_doubt_theta must be > 0");
+  auto unit = [](double v) { return v >= 0.0 && v <= 1.0; };
+  if (!unit(verify_min_known) || !unit(verify_min_inliers) || !unit(verify_relative))
+    throw ConfigError("slam.verify_min_known, verify_min_inliers and verify_relative must be in [0, 1]");
+  if (verify_max_consecutive < 0) throw ConfigError("slam.verify_max_consecutive must be >= 0");
 }
 
 Slam::Slam(const SlamConfig& config)
@@ -80,63 +86,7 @@ SlamStep Slam::process(const LaserScan& scan) {
   const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
   const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
   step.pose = step.prior;
-  if (!first && enough_points) {
-    // Odometry can lag and then jump (intel and mit-csail do both). When it
-    // disagrees sharply with a constant-velocity prediction, search from both
-    // and keep the better match. Only then: the score cannot reliably tell a
-    // small true motion from none (a young map is sparse, and the last scan's
-    // own viewpoint always fits it best), so an always-on alternative would
-    // pull a moving robot back to where it was.
-    std::vector<Pose2> priors{step.prior};
-    if (previous_pose_ && config_.use_odometry) {
-      const Pose2 constant_velocity = pose_ * between(*previous_pose_, pose_);
-      const Pose2 d = between(step.prior, constant_velocity);
-      if (std::hypot(d.x, d.y) > config_.odometry_doubt_xy || std::abs(d.theta) > config_.odometry_doubt_theta)
-        priors.push_back(constant_velocity);
-    }
-    MatchResult m = matcher_.match(map_, points, priors);
-    MatchQuality q = match_quality(map_.finest(), points, m.pose);
-    // A failure shows as a sudden drop of the inlier ratio below what recent
-    // matches achieved (an absolute bar would reject whole regions whose map
-    // is merely fuzzy, e.g. walls first seen from far away). After a few
-    // rejections in a row the map, not the match, is likely what changed:
-    // accept again rather than drift on odometry forever.
-    const double bar = std::max(config_.verify_min_inliers, config_.verify_relative * inlier_average_);
-    auto rejected = [&](const MatchQuality& mq) {
-      return consecutive_rejections_ < config_.verify_max_consecutive &&
-             mq.known_fraction >= config_.verify_min_known && mq.inlier_ratio < bar;
-    };
-    if (rejected(q)) {
-      // Recovery: a wider search from every prediction we have (odometry,
-      // constant velocity, standing still); keep the most consistent answer.
-      priors.push_back(pose_);
-      const MatchResult wide = recovery_matcher_.match(map_, points, priors);
-      const MatchQuality wq = match_quality(map_.finest(), points, wide.pose);
-      if (wq.inlier_ratio > q.inlier_ratio) {
-        m = wide;
-        q = wq;
-      }
-      ++recoveries_;
-    }
-    step.score = m.score;
-    step.inlier_ratio = q.inlier_ratio;
-    // Verify before trusting: a match that puts much of the scan into space
-    // the map has seen free is a failure (a wrong local maximum). Keep the
-    // prediction instead and keep the scan out of the map, so one bad match
-    // cannot corrupt every later one.
-    if (rejected(q)) {
-      step.pose = step.prior;
-      ++rejected_;
-      ++consecutive_rejections_;
-    } else {
-      step.pose = m.pose;
-      step.matched = true;
-      ++matched_;
-      consecutive_rejections_ = 0;
-      if (q.known_fraction >= config_.verify_min_known)
-        inlier_average_ = matched_ <= 1 ? q.inlier_ratio : 0.9 * inlier_average_ + 0.1 * q.inlier_ratio;
-    }
-  }
+  if (!first && enough_points) match_and_verify(points, step);
 
   if (enough_points && (first || step.matched)) {
     bool insert = !last_insert_pose_;
@@ -153,6 +103,63 @@ SlamStep Slam::process(const LaserScan& scan) {
 
   advance(scan, step.pose);
   return step;
+}
+
+void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step) {
+  // Odometry can lag and then jump (intel and mit-csail do both). When it
+  // disagrees sharply with a constant-velocity prediction, search from both
+  // and keep the better match. Only then: the score cannot reliably tell a
+  // small true motion from none (a young map is sparse, and the last scan's
+  // own viewpoint always fits it best), so an always-on alternative would
+  // pull a moving robot back to where it was.
+  std::vector<Pose2> priors{step.prior};
+  if (previous_pose_ && config_.use_odometry) {
+    const Pose2 constant_velocity = pose_ * between(*previous_pose_, pose_);
+    const Pose2 d = between(step.prior, constant_velocity);
+    if (std::hypot(d.x, d.y) > config_.odometry_doubt_xy || std::abs(d.theta) > config_.odometry_doubt_theta)
+      priors.push_back(constant_velocity);
+  }
+  MatchResult m = matcher_.match(map_, points, priors);
+  MatchQuality q = match_quality(map_.finest(), points, m.pose);
+  // A failure shows as a sudden drop of the inlier ratio below what recent
+  // matches achieved (an absolute bar would reject whole regions whose map
+  // is merely fuzzy, e.g. walls first seen from far away). After a few
+  // rejections in a row the map, not the match, is likely what changed:
+  // accept again rather than drift on odometry forever.
+  const double bar = std::max(config_.verify_min_inliers, config_.verify_relative * inlier_average_);
+  auto rejected = [&](const MatchQuality& mq) {
+    return consecutive_rejections_ < config_.verify_max_consecutive &&
+           mq.known_fraction >= config_.verify_min_known && mq.inlier_ratio < bar;
+  };
+  if (rejected(q)) {
+    // Recovery: a wider search from every prediction we have (odometry,
+    // constant velocity, standing still); keep the most consistent answer.
+    priors.push_back(pose_);
+    const MatchResult wide = recovery_matcher_.match(map_, points, priors);
+    const MatchQuality wq = match_quality(map_.finest(), points, wide.pose);
+    if (wq.inlier_ratio > q.inlier_ratio) {
+      m = wide;
+      q = wq;
+    }
+    ++recoveries_;
+  }
+  step.score = m.score;
+  step.inlier_ratio = q.inlier_ratio;
+  // Verify before trusting: a match that puts much of the scan into space
+  // the map has seen free is a failure (a wrong local maximum). Keep the
+  // prediction instead and keep the scan out of the map, so one bad match
+  // cannot corrupt every later one.
+  if (rejected(q)) {
+    ++rejected_;
+    ++consecutive_rejections_;
+    return;
+  }
+  step.pose = m.pose;
+  step.matched = true;
+  ++matched_;
+  consecutive_rejections_ = 0;
+  if (q.known_fraction >= config_.verify_min_known)
+    inlier_average_ = matched_ <= 1 ? q.inlier_ratio : 0.9 * inlier_average_ + 0.1 * q.inlier_ratio;
 }
 
 void Slam::advance(const LaserScan& scan, const Pose2& pose) {

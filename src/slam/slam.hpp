@@ -76,6 +76,9 @@ class Slam {
 
  private:
   Pose2 predict(const LaserScan& scan) const;
+  // Matches `points` from step.prior (and alternatives), verifies the match and
+  // fills step.pose / matched / score; a rejected match leaves the prior.
+  void match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step);
   // Bookkeeping after every scan: odometry anchor and constant-velocity state.
   void advance(const LaserScan& scan, const Pose2& pose);
   bool odometry_stale(const LaserScan& scan) const;
