@@ -17,7 +17,7 @@ namespace dsswarm {
 
 struct EvidenceModel {
   float hit_occupied = 0.4f;   // mass on {occupied} for the cell a beam ends in
-  float pass_free = 0.05f;     // mass on {free} for each cell a beam passes through
+  float pass_free = 0.04f;     // mass on {free} for each cell a beam passes through
   float min_unknown = 0.02f;   // floor on a cell's unknown mass after combination
 
   DsMass hit() const { return {hit_occupied, 0.0f}; }
