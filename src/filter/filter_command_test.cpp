@@ -2,6 +2,8 @@
 #include "apps/filter_command.hpp"
 
 #include <gtest/gtest.h>
+
+#include "common/test_files.hpp"
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -17,14 +19,9 @@
 namespace dsswarm {
 namespace {
 
-namespace fs = std::filesystem;
+using test::fresh_dir;
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(DSSWARM_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+namespace fs = std::filesystem;
 
 // Parses `args` (without the program name) with an app that only has
 // `filter`; returns what the command printed on stdout.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/test_files.hpp"
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -11,6 +13,8 @@
 namespace dsswarm {
 namespace {
 
+using test::fresh_dir;
+
 namespace fs = std::filesystem;
 
 std::string slurp(const fs::path& p) {
@@ -18,13 +22,6 @@ std::string slurp(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(DSSWARM_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 TEST(AtomicFile, WritesContents) {

@@ -108,13 +108,15 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
   if (distinct.empty()) return {};
   MatchResult best;
   int evaluations = 0;
+  double first_prior_score = 0.0;
   for (std::size_t i = 0; i < distinct.size(); ++i) {
     const MatchResult r = match_from(map, points, distinct[i]);
     evaluations += r.evaluations;
+    if (i == 0) first_prior_score = r.prior_score;
     if (i == 0 || r.score > best.score) best = r;
   }
   best.evaluations = evaluations;
-  best.prior_score = score_pose(map.finest(), points, priors.front(), 1, config_.unknown_value);
+  best.prior_score = first_prior_score;  // distinct[0] is priors.front()
   return best;
 }
 

@@ -1,6 +1,8 @@
 #include "io/rosbag/rosbag_reader.hpp"
 
 #include <gtest/gtest.h>
+
+#include "common/test_files.hpp"
 #include <zlib.h>
 
 #include <algorithm>
@@ -25,6 +27,8 @@
 namespace dsswarm {
 namespace {
 
+using test::fresh_dir;
+
 namespace fs = std::filesystem;
 using rosbag_raw::RawOdom;
 using rosbag_raw::RawScan;
@@ -33,13 +37,6 @@ using rosbag_raw::TestBagMessage;
 using rosbag_raw::TestBagSpec;
 
 constexpr double kPi = std::numbers::pi;
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(DSSWARM_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // ---------------------------------------------------------------- bags written here
 

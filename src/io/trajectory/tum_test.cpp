@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/test_files.hpp"
+
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -12,20 +14,11 @@
 namespace dsswarm {
 namespace {
 
+using test::fresh_dir;
+using test::write_text;
+
 namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(DSSWARM_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-fs::path write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-  return path;
-}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
