@@ -1,6 +1,8 @@
 #include "apps/filter_command.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -18,6 +20,7 @@
 #include "io/atomic_file.hpp"
 #include "io/logs/carmen_writer.hpp"
 #include "io/logs/log_reader.hpp"
+#include "io/maps/render.hpp"
 
 namespace dsswarm {
 
@@ -29,6 +32,7 @@ struct FilterArgs {
   std::string log;
   std::string out;
   std::string decisions;
+  std::string plot;
   std::string scan_topic = "/scan";
   std::string odom_topic = "/odom";
   bool no_odometry = false;
@@ -52,6 +56,35 @@ void write_decisions(const std::string& path, const std::vector<DecisionRow>& ro
                  d.product, d.window);
     }
   });
+}
+
+// A picture of the filter over time: one column per scan (or per group of
+// scans on long logs). Top panel: the smallest correlation with the window,
+// from 0.8 (bottom) to 1.0 (top), with P_pair as a blue line; kept scans in
+// dark grey, dropped scans in red. Bottom band: red where scans were dropped.
+void write_plot(const std::string& path, const std::vector<DecisionRow>& rows, double pair_threshold) {
+  constexpr int kWidth = 1600, kPanel = 360, kBand = 40, kGap = 10;
+  Image img{kWidth, kPanel + kGap + kBand, {}};
+  img.pixels.assign(static_cast<std::size_t>(img.width) * img.height, Rgb{255, 255, 255});
+  const Rgb kept{70, 70, 70}, dropped{220, 40, 40}, threshold{40, 90, 220}, grid{225, 225, 225};
+  auto y_of = [&](double c) {
+    const double t = std::clamp((c - 0.8) / 0.2, 0.0, 1.0);
+    return static_cast<int>(std::lround((1.0 - t) * (kPanel - 1)));
+  };
+  for (double g = 0.8; g <= 1.0001; g += 0.05)
+    for (int x = 0; x < kWidth; ++x) img.at(x, y_of(g)) = grid;
+  for (int x = 0; x < kWidth; ++x) img.at(x, y_of(pair_threshold)) = threshold;
+  const std::size_t n = rows.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int x = static_cast<int>(static_cast<double>(i) * kWidth / static_cast<double>(std::max<std::size_t>(n, 1)));
+    const ScanFilter::Decision& d = rows[i].decision;
+    const int y = y_of(d.min_correlation);
+    for (int dy = -1; dy <= 1; ++dy)
+      if (y + dy >= 0 && y + dy < kPanel) img.at(x, y + dy) = d.keep ? kept : dropped;
+    if (!d.keep)
+      for (int yy = kPanel + kGap; yy < img.height; ++yy) img.at(x, yy) = dropped;
+  }
+  write_png(path, img);
 }
 
 void run_filter(FilterArgs& a) {
@@ -102,6 +135,7 @@ void run_filter(FilterArgs& a) {
                            "P_common {}",
                            a.log, kept.size(), read_count, columns, a.statistic, a.binning, c.pair_threshold, common));
   if (!a.decisions.empty()) write_decisions(a.decisions, rows);
+  if (!a.plot.empty()) write_plot(a.plot, rows, c.pair_threshold);
 
   fmt::print("scan filter: {} -> {}\n", a.log, a.out);
   fmt::print("  histogram: {} columns, {} of each {}, P_pair {}, P_common {}{}\n", columns,
@@ -132,6 +166,9 @@ void add_filter_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Filtered log to write (CARMEN, the kept scans)")->required();
   cmd->add_option("--decisions", args->decisions,
                   "CSV with one row per scan: index,timestamp,kept,min_correlation,product,window");
+  cmd->add_option("--plot", args->plot,
+                  "PNG over time: min correlation with the window (0.8 bottom to 1.0 top, P_pair in blue, "
+                  "dropped scans red) and a red band where scans were dropped");
   cmd->add_option("--scan-topic", args->scan_topic, "ROS bag: sensor_msgs/LaserScan topic")->capture_default_str();
   cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
   cmd->add_flag("--no-odometry", args->no_odometry, "Ignore odometry: fixed window, no motion valve");
