@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "apps/cli_test_util.hpp"
+
 #include "common/test_files.hpp"
 #include <nlohmann/json.hpp>
 
@@ -20,22 +22,7 @@ using test::fresh_dir;
 
 namespace fs = std::filesystem;
 
-// Parses `args` (without the program name) with an app that only has `eval`;
-// returns what the command printed on stdout.
-std::string run_cli(std::vector<std::string> args) {
-  CLI::App app("test");
-  add_eval_command(app);
-  std::vector<const char*> argv = {"dsswarm"};
-  for (const auto& a : args) argv.push_back(a.c_str());
-  testing::internal::CaptureStdout();
-  try {
-    app.parse(static_cast<int>(argv.size()), argv.data());
-  } catch (...) {
-    testing::internal::GetCapturedStdout();
-    throw;
-  }
-  return testing::internal::GetCapturedStdout();
-}
+std::string run_cli(const std::vector<std::string>& args) { return test::run_cli(add_eval_command, args); }
 
 std::string last_line(const std::string& text) {
   std::string trimmed = text;

@@ -51,15 +51,9 @@ MeanStd mean_and_std(const std::vector<double>& values) {
 std::vector<Relation> read_relations(const std::filesystem::path& path) {
   std::ifstream in = open_text_input(path, "relations");
   std::vector<Relation> relations;
-  std::string raw;
-  std::size_t line_number = 0;
-  while (std::getline(in, raw)) {
-    ++line_number;
-    const std::string_view line = strip_carriage_return(raw);
-    if (is_blank_or_comment(line)) continue;
-    relations.push_back(parse_relation_line(line, fmt::format("{}:{}", path.string(), line_number)));
-  }
-  if (in.bad()) throw InputError(fmt::format("{}: read error after line {}", path.string(), line_number));
+  for_each_data_line(in, path.string(), [&](std::string_view line, const std::string& where) {
+    relations.push_back(parse_relation_line(line, where));
+  });
   if (relations.empty()) throw InputError(fmt::format("{}: no relations found", path.string()));
   return relations;
 }

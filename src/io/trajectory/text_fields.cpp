@@ -71,4 +71,17 @@ double parse_finite_field(std::string_view token, std::string_view where, std::s
   return value;
 }
 
+void for_each_data_line(std::istream& in, const std::string& source,
+                        const std::function<void(std::string_view line, const std::string& where)>& on_line) {
+  std::string raw;
+  std::size_t line_number = 0;
+  while (std::getline(in, raw)) {
+    ++line_number;
+    const std::string_view line = strip_carriage_return(raw);
+    if (is_blank_or_comment(line)) continue;
+    on_line(line, fmt::format("{}:{}", source, line_number));
+  }
+  if (in.bad()) throw InputError(fmt::format("{}: read error after line {}", source, line_number));
+}
+
 }  // namespace dsswarm

@@ -4,6 +4,8 @@
 // parse one field as a finite number, with errors that name file, line and field.
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <istream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +21,12 @@ std::string_view strip_carriage_return(std::string_view line);
 
 // True for lines that carry no data: empty, only whitespace, or a '#' comment.
 bool is_blank_or_comment(std::string_view line);
+
+// Calls `on_line(line, where)` for every data line of `in` (blank lines and
+// comments skipped, '\r' stripped), `where` being "source:LINE". Throws
+// InputError if the stream fails while reading.
+void for_each_data_line(std::istream& in, const std::string& source,
+                        const std::function<void(std::string_view line, const std::string& where)>& on_line);
 
 // Whitespace-separated tokens of `line` (views into it).
 std::vector<std::string_view> split_fields(std::string_view line);

@@ -70,15 +70,9 @@ void write_tum(const std::filesystem::path& path, const Trajectory& trajectory) 
 
 Trajectory read_tum(std::istream& in, const std::string& source_name) {
   Trajectory trajectory;
-  std::string raw;
-  std::size_t line_number = 0;
-  while (std::getline(in, raw)) {
-    ++line_number;
-    const std::string_view line = strip_carriage_return(raw);
-    if (is_blank_or_comment(line)) continue;
-    trajectory.push_back(parse_tum_line(line, fmt::format("{}:{}", source_name, line_number)));
-  }
-  if (in.bad()) throw InputError(fmt::format("{}: read error after line {}", source_name, line_number));
+  for_each_data_line(in, source_name, [&](std::string_view line, const std::string& where) {
+    trajectory.push_back(parse_tum_line(line, where));
+  });
   return trajectory;
 }
 
