@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include "common/errors.hpp"
 #include "matching/scan_scorer.hpp"
@@ -30,6 +31,30 @@ Slam::Slam(const SlamConfig& config)
       recovery_matcher_(recovery_config(config.matcher), config.seed + 1),
       filter_(config.filter) {
   config_.validate();
+}
+
+Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start) : Slam(config) {
+  if (initial.config().resolution != config_.map.resolution || initial.levels() != config_.map.levels)
+    throw ConfigError("the initial map's resolution/levels (" + std::to_string(initial.config().resolution) + " m, " +
+                      std::to_string(initial.levels()) + ") differ from map.resolution/map.levels (" +
+                      std::to_string(config_.map.resolution) + " m, " + std::to_string(config_.map.levels) + ")");
+  map_ = std::move(initial);
+  pose_ = start;
+  has_initial_map_ = true;
+}
+
+void Slam::replace_working_map(MultiResMap working) {
+  if (working.config().resolution != map_.config().resolution || working.levels() != map_.levels())
+    throw ConfigError("replace_working_map: the map's resolution/levels differ from this robot's");
+  if (!own_map_) own_map_ = std::move(map_);
+  map_ = std::move(working);
+}
+
+void Slam::insert(const Pose2& pose, const LaserScan& scan, const std::vector<ScanPoint>& points) {
+  map_.insert_scan(pose, scan.laser_offset, points);
+  if (own_map_) own_map_->insert_scan(pose, scan.laser_offset, points);
+  last_insert_pose_ = pose;
+  ++inserted_;
 }
 
 bool Slam::odometry_stale(const LaserScan& scan) const {
@@ -64,7 +89,8 @@ Pose2 Slam::predict(const LaserScan& scan) const {
 SlamStep Slam::process(const LaserScan& scan) {
   SlamStep step;
   const bool first = processed_ == 0;
-  if (first && config_.use_odometry && scan.odometry) pose_ = *scan.odometry;  // map frame = odometry frame
+  // A new map's frame is the odometry frame; a given map keeps its own.
+  if (first && !has_initial_map_ && config_.use_odometry && scan.odometry) pose_ = *scan.odometry;
   step.prior = first ? pose_ : predict(scan);
   ++processed_;
 
@@ -86,19 +112,27 @@ SlamStep Slam::process(const LaserScan& scan) {
   const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
   const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
   step.pose = step.prior;
-  if (!first && enough_points) match_and_verify(points, step);
+  const bool founding = first && !has_initial_map_;
+  if (first && has_initial_map_ && enough_points) {
+    // Where in the given map are we? Only `start` is known, roughly: search wide.
+    const MatchResult m = recovery_matcher_.match(map_, points, step.prior);
+    step.pose = m.pose;
+    step.score = m.score;
+    step.inlier_ratio = match_quality(map_.finest(), points, m.pose).inlier_ratio;
+    step.matched = true;
+    ++matched_;
+  } else if (!first && enough_points) {
+    match_and_verify(points, step);
+  }
 
-  if (enough_points && (first || step.matched)) {
+  if (enough_points && (founding || step.matched)) {
     bool insert = !last_insert_pose_;
     if (last_insert_pose_) {
       const Pose2 d = between(*last_insert_pose_, step.pose);
       insert = std::hypot(d.x, d.y) >= config_.insert_min_travel ||
                std::abs(d.theta) >= config_.insert_min_rotation;
     }
-    if (insert) {
-      map_.insert_scan(step.pose, scan.laser_offset, points);
-      last_insert_pose_ = step.pose;
-    }
+    if (insert) this->insert(step.pose, scan, points);
   }
 
   advance(scan, step.pose);

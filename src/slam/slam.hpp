@@ -61,10 +61,26 @@ struct SlamStep {
 class Slam {
  public:
   explicit Slam(const SlamConfig& config = {});
+  // Continues mapping in `initial` (a saved map, or evidence received from
+  // other robots): the first scan is matched against it from `start` (a wide
+  // search) instead of founding the map. `initial` counts as own evidence.
+  Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start);
 
   SlamStep process(const LaserScan& scan);
 
+  // The map the robot localizes in: its own evidence combined with whatever
+  // it received from others (see replace_working_map).
   const MultiResMap& map() const { return map_; }
+  // Only the evidence of this robot's own scans: what it shares with others,
+  // so that nothing received from a third robot is ever passed on as its own.
+  const MultiResMap& own_map() const { return own_map_ ? *own_map_ : map_; }
+  // Installs a richer map to localize in (own evidence ⊕ foreign evidence,
+  // built by the swarm layer from own_map()). From then on every insertion
+  // goes into both maps; Dempster's rule is associative and commutative, so
+  // the working map stays exactly own ⊕ foreign.
+  void replace_working_map(MultiResMap working);
+  // How many scans this robot has put into its own map (a snapshot's version).
+  std::size_t scans_inserted() const { return inserted_; }
   const Pose2& pose() const { return pose_; }
   std::size_t scans_processed() const { return processed_; }
   std::size_t scans_matched() const { return matched_; }
@@ -86,7 +102,12 @@ class Slam {
   static MatcherConfig recovery_config(const MatcherConfig& normal);
 
   SlamConfig config_;
-  MultiResMap map_;
+  void insert(const Pose2& pose, const LaserScan& scan, const std::vector<ScanPoint>& points);
+
+  MultiResMap map_;                      // working map: own ⊕ foreign evidence
+  std::optional<MultiResMap> own_map_;   // set once the working map holds foreign evidence
+  bool has_initial_map_ = false;         // first scan is matched, not founding
+  std::size_t inserted_ = 0;
   MonteCarloMatcher matcher_;
   MonteCarloMatcher recovery_matcher_;
   ScanFilter filter_;

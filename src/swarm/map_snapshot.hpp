@@ -1,0 +1,38 @@
+#pragma once
+// What one robot knows of the world, kept layer by layer with its origin
+// (provenance): its own evidence, and for every other robot it has heard of —
+// directly or second-hand — that robot's own evidence, in that robot's map
+// frame, with the pose of that frame in the holder's frame.
+//
+// Keeping evidence per origin instead of one blended map is what lets merging
+// be idempotent and order-independent: a newer layer from the same origin
+// replaces the older one (a robot's own map only grows), so the same evidence
+// is never counted twice however often, and through whom, it arrives.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/pose2.hpp"
+#include "grid/multires_map.hpp"
+
+namespace dsswarm {
+
+struct MapLayer {
+  std::string origin;          // robot whose own scans made this evidence
+  std::uint64_t version = 0;   // scans the origin had put in its map when the layer was taken (more = newer)
+  Pose2 origin_in_holder;      // pose of the origin's map frame in the holder's map frame
+  int hops = 0;                // 0: the holder's own map; 1: received from the origin; 2+: second-hand
+  // Immutable once taken, so snapshots and agents share it without copying.
+  std::shared_ptr<const MultiResMap> map;
+};
+
+// What a robot sends at an encounter (and what a .dsmap file holds): layers[0]
+// is the sender's own map (origin == sender, identity pose, hops 0), then what
+// it knows of others, placed in the sender's frame.
+struct MapSnapshot {
+  std::string sender;
+  std::vector<MapLayer> layers;
+};
+
+}  // namespace dsswarm
