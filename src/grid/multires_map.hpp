@@ -44,6 +44,9 @@ class MultiResMap {
   int levels() const { return static_cast<int>(grids_.size()); }
   const DsGrid& level(int i) const { return grids_[static_cast<std::size_t>(i)]; }
   const DsGrid& finest() const { return grids_.front(); }
+  // Direct cell access for code that builds maps other than from scans
+  // (loading a saved map, merging another robot's map).
+  DsGrid& mutable_level(int i) { return grids_[static_cast<std::size_t>(i)]; }
 
   // Adds the evidence of one scan: free along each beam from the laser to the
   // hit, then occupied at the hit. `points` are in the robot base frame, as
