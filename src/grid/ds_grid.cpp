@@ -7,6 +7,26 @@ namespace dsswarm {
 
 DsGrid::DsGrid(double resolution) : resolution_(resolution), inv_resolution_(1.0 / resolution) {}
 
+DsGrid::DsGrid(const DsGrid& other)
+    : resolution_(other.resolution_),
+      inv_resolution_(other.inv_resolution_),
+      table_(other.table_.size(), nullptr),
+      table_origin_(other.table_origin_),
+      table_width_(other.table_width_),
+      table_height_(other.table_height_) {
+  tiles_.reserve(other.tiles_.size());
+  for (const auto& t : other.tiles_) {
+    tiles_.push_back(std::make_unique<Tile>(*t));
+    const std::int32_t x = (t->origin.x >> kTileBits) - table_origin_.x, y = (t->origin.y >> kTileBits) - table_origin_.y;
+    table_[static_cast<std::size_t>(y) * table_width_ + x] = tiles_.back().get();
+  }
+}
+
+DsGrid& DsGrid::operator=(const DsGrid& other) {
+  if (this != &other) *this = DsGrid(other);
+  return *this;
+}
+
 DsGrid::Tile& DsGrid::get_or_create_tile(CellIndex c) {
   const std::int32_t tx = c.x >> kTileBits, ty = c.y >> kTileBits;
   std::int32_t lx = tx - table_origin_.x, ly = ty - table_origin_.y;

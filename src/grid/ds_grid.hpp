@@ -30,6 +30,11 @@ class DsGrid {
   static constexpr int kTileCells = kTileSize * kTileSize;
 
   explicit DsGrid(double resolution = 0.05);
+  // Deep copies (a robot hands a frozen copy of its map to others); moves are cheap.
+  DsGrid(const DsGrid& other);
+  DsGrid& operator=(const DsGrid& other);
+  DsGrid(DsGrid&&) noexcept = default;
+  DsGrid& operator=(DsGrid&&) noexcept = default;
 
   double resolution() const { return resolution_; }
 

@@ -80,5 +80,21 @@ TEST(DsGrid, QuadMatchesFourLookupsInsideAndAcrossTiles) {
   }
 }
 
+TEST(DsGrid, CopyIsDeepAndIndependent) {
+  DsGrid a(0.1);
+  a.mutable_at({-70, 5}) = {0.5f, 0.1f};
+  a.mutable_at({200, -300}) = {0.2f, 0.3f};
+  DsGrid b = a;
+  EXPECT_EQ(b.tiles_allocated(), a.tiles_allocated());
+  EXPECT_FLOAT_EQ(b.at({-70, 5}).occupied, 0.5f);
+  EXPECT_FLOAT_EQ(b.at({200, -300}).free, 0.3f);
+  b.mutable_at({-70, 5}) = {0.0f, 0.9f};
+  b.mutable_at({1000, 1000}) = {0.7f, 0.0f};
+  EXPECT_FLOAT_EQ(a.at({-70, 5}).occupied, 0.5f);  // the original is untouched
+  EXPECT_FLOAT_EQ(a.at({1000, 1000}).occupied, 0.0f);
+  a = b;
+  EXPECT_FLOAT_EQ(a.at({1000, 1000}).occupied, 0.7f);
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -1,0 +1,78 @@
+#include "swarm/encounter.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "common/errors.hpp"
+
+namespace dsswarm {
+
+void EncounterConfig::validate() const {
+  locate.validate();
+  auto unit = [](double v) { return v >= 0.0 && v <= 1.0; };
+  if (!unit(min_known_fraction)) throw ConfigError("encounter.min_known_fraction must be in [0, 1]");
+  if (!unit(min_inlier_ratio)) throw ConfigError("encounter.min_inlier_ratio must be in [0, 1]");
+  if (!unit(max_runner_up_ratio)) throw ConfigError("encounter.max_runner_up_ratio must be in [0, 1]");
+  if (!(agree_xy > 0.0) || !(agree_theta > 0.0)) throw ConfigError("encounter.agree_xy and agree_theta must be > 0");
+}
+
+namespace {
+
+// Why a placement cannot be trusted, or "" when it can. `who` sees `whom`.
+std::string placement_problem(const RelativePoseResult& r, const EncounterConfig& config, const char* who,
+                              const char* whom) {
+  const PoseHypothesis& best = r.best;
+  if (best.known_fraction < config.min_known_fraction)
+    return fmt::format("{}: too little of {}'s scan falls on its map (known {:.2f} < {:.2f})", who, whom,
+                       best.known_fraction, config.min_known_fraction);
+  if (best.inlier_ratio < config.min_inlier_ratio)
+    return fmt::format("{}: {}'s scan fits its map poorly (inliers {:.2f} < {:.2f})", who, whom, best.inlier_ratio,
+                       config.min_inlier_ratio);
+  if (r.runner_up && r.runner_up->score > config.max_runner_up_ratio * best.score) {
+    const Pose2 d = between(best.pose, r.runner_up->pose);
+    return fmt::format("{}: ambiguous: another placement of {} {:.2f} m / {:.0f}° away scores {:.2f} of the best",
+                       who, whom, std::hypot(d.x, d.y), std::abs(d.theta) * 180.0 / M_PI,
+                       r.runner_up->score / std::max(best.score, 1e-9));
+  }
+  return "";
+}
+
+}  // namespace
+
+EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView& b, const EncounterConfig& config,
+                                     std::uint64_t seed) {
+  config.validate();
+  if (!a.map || !b.map) throw ConfigError("estimate_encounter: both views need a map");
+  EncounterEstimate e;
+  e.a_locates_b = locate_scan(*a.map, b.points, a.pose.translation(), config.locate, seed);
+  e.b_locates_a = locate_scan(*b.map, a.points, b.pose.translation(), config.locate, seed + 1);
+  if (b.points.empty() || a.points.empty()) {
+    e.reason = "a robot has no valid scan points";
+    return e;
+  }
+  // Both directions as estimates of B's frame in A's frame.
+  const Pose2 from_a = e.a_locates_b.best.pose * b.pose.inverse();
+  const Pose2 from_b = (e.b_locates_a.best.pose * a.pose.inverse()).inverse();
+  // Compare where each puts robot B: the frames' origins may be far away,
+  // where a small angle error looks like a large offset.
+  const Pose2 b_by_a = from_a * b.pose, b_by_b = from_b * b.pose;
+  e.disagreement_xy = std::hypot(b_by_a.x - b_by_b.x, b_by_a.y - b_by_b.y);
+  e.disagreement_theta = std::abs(normalize_angle(b_by_a.theta - b_by_b.theta));
+
+  std::string problem = placement_problem(e.a_locates_b, config, "A", "B");
+  if (problem.empty()) problem = placement_problem(e.b_locates_a, config, "B", "A");
+  if (problem.empty() && (e.disagreement_xy > config.agree_xy || e.disagreement_theta > config.agree_theta))
+    problem = fmt::format("the two directions disagree by {:.2f} m / {:.1f}°", e.disagreement_xy,
+                          e.disagreement_theta * 180.0 / M_PI);
+  if (!problem.empty()) {
+    e.reason = problem;
+    return e;
+  }
+  // Accepted: the mean of the two estimates of B's pose, expressed as a frame transform.
+  const Pose2 b_mean = interpolate(b_by_a, b_by_b, 0.5);
+  e.b_frame_in_a = b_mean * b.pose.inverse();
+  e.accepted = true;
+  return e;
+}
+
+}  // namespace dsswarm

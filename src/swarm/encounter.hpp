@@ -1,0 +1,52 @@
+#pragma once
+// Two robots are near each other: find the transform between their map
+// frames, and decide whether it is trustworthy enough to merge on.
+//
+// Each robot places the other's current scan in its own map (relative_pose),
+// giving two independent estimates of the same transform. It is accepted only
+// when (1) each placement lands mostly on mapped space and fits it, (2) each
+// placement clearly beats the best alternative placement, and (3) the two
+// directions agree. A wrong merge corrupts a map for good; a rejected one
+// costs only a wait for the next encounter.
+#include <string>
+#include <vector>
+
+#include "grid/multires_map.hpp"
+#include "sensor/scan_points.hpp"
+#include "swarm/relative_pose.hpp"
+
+namespace dsswarm {
+
+struct EncounterConfig {
+  RelativePoseConfig locate;
+  double min_known_fraction = 0.5;  // share of the foreign scan that must land on mapped cells
+  double min_inlier_ratio = 0.6;    // share of those that must land on obstacles
+  double max_runner_up_ratio = 0.9; // the best alternative must score below this share of the best
+  double agree_xy = 0.15;           // m: the two directions' estimates of a robot's position
+  double agree_theta = 0.035;       // rad (2°)
+
+  void validate() const;  // throws ConfigError naming the field
+};
+
+// What one robot contributes: the map it localizes in, its current scan
+// (robot base frame) and its pose in its own map frame.
+struct EncounterView {
+  const MultiResMap* map = nullptr;
+  std::vector<ScanPoint> points;
+  Pose2 pose;
+};
+
+struct EncounterEstimate {
+  bool accepted = false;
+  std::string reason;      // why it was rejected ("" when accepted)
+  Pose2 b_frame_in_a;      // pose of B's map frame in A's map frame (valid when accepted)
+  RelativePoseResult a_locates_b;  // B's robot placed in A's map
+  RelativePoseResult b_locates_a;  // A's robot placed in B's map
+  double disagreement_xy = 0.0;    // m, between the two directions' placements of B
+  double disagreement_theta = 0.0; // rad
+};
+
+EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView& b, const EncounterConfig& config,
+                                     std::uint64_t seed);
+
+}  // namespace dsswarm

@@ -1,0 +1,54 @@
+#include "swarm/map_knowledge.hpp"
+
+#include <tuple>
+
+namespace dsswarm {
+
+bool supersedes(const MapLayer& candidate, const MapLayer& current) {
+  if (candidate.version != current.version) return candidate.version > current.version;
+  if (candidate.hops != current.hops) return candidate.hops < current.hops;
+  const Pose2& a = candidate.origin_in_holder;
+  const Pose2& b = current.origin_in_holder;
+  return std::tie(a.x, a.y, a.theta) < std::tie(b.x, b.y, b.theta);
+}
+
+bool MapKnowledge::absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
+  bool changed = false;
+  for (const MapLayer& layer : snapshot.layers) {
+    if (layer.origin == self_ || !layer.map) continue;
+    MapLayer placed = layer;
+    placed.origin_in_holder = sender_in_self * layer.origin_in_holder;
+    placed.hops = layer.hops + 1;
+    auto it = layers_.find(layer.origin);
+    if (it == layers_.end()) {
+      layers_.emplace(layer.origin, std::move(placed));
+      changed = true;
+    } else if (supersedes(placed, it->second)) {
+      it->second = std::move(placed);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+std::vector<MapLayer> MapKnowledge::layers() const {
+  std::vector<MapLayer> out;
+  out.reserve(layers_.size());
+  for (const auto& [origin, layer] : layers_) out.push_back(layer);
+  return out;
+}
+
+const MapLayer* MapKnowledge::find(const std::string& origin) const {
+  auto it = layers_.find(origin);
+  return it == layers_.end() ? nullptr : &it->second;
+}
+
+MapSnapshot MapKnowledge::snapshot(std::shared_ptr<const MultiResMap> own_map, std::uint64_t own_version) const {
+  MapSnapshot s;
+  s.sender = self_;
+  s.layers.push_back(MapLayer{self_, own_version, Pose2{}, 0, std::move(own_map)});
+  for (const auto& [origin, layer] : layers_) s.layers.push_back(layer);
+  return s;
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,82 @@
+#include "swarm/map_merge.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+#include "matching/scan_scorer.hpp"
+#include "swarm/test_scenes.hpp"
+
+namespace dsswarm {
+namespace {
+
+bool same_cells(const DsGrid& a, const DsGrid& b) {
+  bool same = a.tiles_allocated() == b.tiles_allocated();
+  a.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    for (int i = 0; i < DsGrid::kTileCells && same; ++i) {
+      const CellIndex c{origin.x + (i & (DsGrid::kTileSize - 1)), origin.y + (i >> DsGrid::kTileBits)};
+      same = b.at(c).occupied == cells[i].occupied && b.at(c).free == cells[i].free;
+    }
+  });
+  return same;
+}
+
+TEST(MapMerge, AtIdentityEveryCellIsTheDempsterCombination) {
+  MultiResMap a, b;
+  a.mutable_level(0).mutable_at({3, 4}) = {0.5f, 0.1f};
+  b.mutable_level(0).mutable_at({3, 4}) = {0.3f, 0.2f};
+  b.mutable_level(0).mutable_at({-20, 7}) = {0.0f, 0.6f};
+  combine_into(a, b, Pose2{});
+  const DsMass expected = a.config().evidence.update({0.5f, 0.1f}, {0.3f, 0.2f});
+  EXPECT_NEAR(a.finest().at({3, 4}).occupied, expected.occupied, 1e-6);
+  EXPECT_NEAR(a.finest().at({3, 4}).free, expected.free, 1e-6);
+  EXPECT_NEAR(a.finest().at({-20, 7}).free, 0.6f, 1e-6);
+  EXPECT_EQ(a.finest().at({100, 100}).occupied, 0.0f);  // nothing known there
+}
+
+TEST(MapMerge, ForeignMapLandsOnTheSameWallsThroughTheTransform) {
+  const World world = test::l_shaped_office();
+  Rng rng(3);
+  // Robot A's frame starts at (1, 1, 0); robot B's at (8, 2, 2.0) — rotated.
+  const Pose2 a_frame{1.0, 1.0, 0.0}, b_frame{8.0, 2.0, 2.0};
+  const MultiResMap only_b = test::map_from(world, {{8.0, 2.0, 2.0}, {6.0, 2.5, 0.5}}, b_frame, rng);
+  MultiResMap a = test::map_from(world, {{2.0, 1.5, 0.0}}, a_frame, rng);
+  const Pose2 b_in_a = a_frame.inverse() * b_frame;
+  combine_into(a, only_b, b_in_a);
+  // A scan taken where only B had been fits A's merged map at the true pose…
+  const Pose2 probe{7.0, 2.8, -1.0};
+  const auto points = test::scan_at(world, probe, rng);
+  const double right = score_pose(a.finest(), points, a_frame.inverse() * probe);
+  // …and clearly worse through a wrong transform.
+  MultiResMap wrong = test::map_from(world, {{2.0, 1.5, 0.0}}, a_frame, rng);
+  combine_into(wrong, only_b, b_in_a * Pose2{0.3, 0.0, 0.1});
+  const double off = score_pose(wrong.finest(), points, a_frame.inverse() * probe);
+  EXPECT_GT(right, 0.3);
+  EXPECT_GT(right, 2.0 * off);
+}
+
+TEST(MapMerge, ComposeIgnoresTheOrderLayersArriveIn) {
+  const World world = test::l_shaped_office();
+  Rng rng(5);
+  const MultiResMap own = test::map_from(world, {{2.0, 1.5, 0.0}}, Pose2{}, rng);
+  auto layer = [&](const char* origin, const Pose2& frame, const Pose2& at) {
+    return MapLayer{origin, 10, frame, 1, std::make_shared<const MultiResMap>(test::map_from(world, {at}, frame, rng))};
+  };
+  const MapLayer b = layer("b", {5.0, 1.0, 0.3}, {6.0, 2.0, 0.0});
+  const MapLayer c = layer("c", {2.0, 7.0, -1.2}, {2.0, 6.0, 1.0});
+  const MultiResMap bc = compose_working_map(own, {b, c});
+  const MultiResMap cb = compose_working_map(own, {c, b});
+  for (int level = 0; level < own.levels(); ++level) EXPECT_TRUE(same_cells(bc.level(level), cb.level(level)));
+  // And the foreign evidence is really there.
+  EXPECT_FALSE(same_cells(bc.finest(), own.finest()));
+}
+
+TEST(MapMerge, RefusesMapsOfAnotherResolution) {
+  MultiResMap a;
+  MapConfig coarse;
+  coarse.resolution = 0.1;
+  const MultiResMap b(coarse);
+  EXPECT_THROW(combine_into(a, b, Pose2{}), ConfigError);
+}
+
+}  // namespace
+}  // namespace dsswarm

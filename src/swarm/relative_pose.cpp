@@ -1,0 +1,112 @@
+#include "swarm/relative_pose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "common/errors.hpp"
+#include "matching/scan_scorer.hpp"
+
+namespace dsswarm {
+
+void RelativePoseConfig::validate() const {
+  if (!(search_radius > 0.0 && search_radius <= 50.0)) throw ConfigError("encounter.search_radius must be in (0, 50] m");
+  if (!(coarse_step_xy >= 0.01 && coarse_step_xy <= 1.0)) throw ConfigError("encounter.coarse_step_xy must be in [0.01, 1] m");
+  if (!(coarse_step_theta >= 0.005 && coarse_step_theta <= 0.5))
+    throw ConfigError("encounter.coarse_step_theta must be in [0.005, 0.5] rad");
+  if (coarse_points < 10) throw ConfigError("encounter.coarse_points must be >= 10");
+  if (candidates < 2 || candidates > 100) throw ConfigError("encounter.candidates must be in [2, 100]");
+  if (!(mode_separation_xy > 0.0) || !(mode_separation_theta > 0.0))
+    throw ConfigError("encounter.mode_separation_xy and mode_separation_theta must be > 0");
+  refine.validate();
+}
+
+bool distinct_modes(const Pose2& a, const Pose2& b, const RelativePoseConfig& config) {
+  return std::hypot(a.x - b.x, a.y - b.y) >= config.mode_separation_xy ||
+         std::abs(normalize_angle(a.theta - b.theta)) >= config.mode_separation_theta;
+}
+
+namespace {
+
+struct Coarse {
+  float score;
+  Pose2 pose;
+};
+
+// Step 1: every heading × every lattice position within the radius, on the coarsest level.
+std::vector<Coarse> exhaustive_search(const DsGrid& grid, const std::vector<ScanPoint>& points,
+                                      const Eigen::Vector2d& near, const RelativePoseConfig& config) {
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / static_cast<std::size_t>(config.coarse_points));
+  std::vector<ScanPoint> subset;
+  for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
+  double weight_sum = 0.0;
+  for (const ScanPoint& p : subset) weight_sum += p.weight;
+
+  const int steps_xy = static_cast<int>(std::floor(config.search_radius / config.coarse_step_xy));
+  const int headings = std::max(1, static_cast<int>(std::lround(2.0 * std::numbers::pi / config.coarse_step_theta)));
+  std::vector<Coarse> all;
+  std::vector<Eigen::Vector2d> rotated(subset.size());
+  for (int h = 0; h < headings; ++h) {
+    const double theta = -std::numbers::pi + 2.0 * std::numbers::pi * h / headings;
+    const double c = std::cos(theta), s = std::sin(theta);
+    for (std::size_t i = 0; i < subset.size(); ++i)
+      rotated[i] = {c * subset[i].x - s * subset[i].y, s * subset[i].x + c * subset[i].y};
+    for (int iy = -steps_xy; iy <= steps_xy; ++iy)
+      for (int ix = -steps_xy; ix <= steps_xy; ++ix) {
+        if (ix * ix + iy * iy > steps_xy * steps_xy) continue;
+        const double px = near.x() + ix * config.coarse_step_xy, py = near.y() + iy * config.coarse_step_xy;
+        double sum = 0.0;
+        for (std::size_t i = 0; i < subset.size(); ++i)
+          sum += subset[i].weight * interpolated_occupancy(grid, px + rotated[i].x(), py + rotated[i].y(), 0.0f);
+        all.push_back({static_cast<float>(weight_sum > 0.0 ? sum / weight_sum : 0.0), Pose2{px, py, theta}});
+      }
+  }
+  return all;
+}
+
+// The best `count` placements that are pairwise distinct modes.
+std::vector<Pose2> distinct_best(std::vector<Coarse> all, int count, const RelativePoseConfig& config) {
+  std::sort(all.begin(), all.end(), [](const Coarse& a, const Coarse& b) { return a.score > b.score; });
+  std::vector<Pose2> chosen;
+  for (const Coarse& c : all) {
+    if (static_cast<int>(chosen.size()) >= count) break;
+    bool distinct = true;
+    for (const Pose2& p : chosen) distinct = distinct && distinct_modes(c.pose, p, config);
+    if (distinct) chosen.push_back(c.pose);
+  }
+  return chosen;
+}
+
+}  // namespace
+
+RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoint>& points,
+                               const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed) {
+  config.validate();
+  RelativePoseResult result;
+  if (points.empty()) return result;
+  const DsGrid& coarse = map.level(map.levels() - 1);
+  std::vector<Coarse> all = exhaustive_search(coarse, points, near, config);
+  result.evaluations = static_cast<int>(all.size());
+  const std::vector<Pose2> starts = distinct_best(std::move(all), config.candidates, config);
+
+  MonteCarloMatcher matcher(config.refine, seed);
+  std::vector<PoseHypothesis> refined;
+  for (const Pose2& start : starts) {
+    const MatchResult m = matcher.match(map, points, start);
+    result.evaluations += m.evaluations;
+    const MatchQuality q = match_quality(map.finest(), points, m.pose);
+    refined.push_back({m.pose, m.score, q.inlier_ratio, q.known_fraction});
+  }
+  std::sort(refined.begin(), refined.end(),
+            [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.score > b.score; });
+  if (refined.empty()) return result;
+  result.best = refined.front();
+  for (std::size_t i = 1; i < refined.size(); ++i)
+    if (distinct_modes(refined[i].pose, result.best.pose, config)) {
+      result.runner_up = refined[i];
+      break;
+    }
+  return result;
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,61 @@
+#pragma once
+// Where is the other robot? Placing a foreign scan in one's own map when the
+// relative heading is unknown and the position is known only to lie within
+// the proximity sensor's range.
+//
+//   1. exhaustive search on the coarsest level: every heading (3° steps) ×
+//      every position on a 0.15 m lattice within the range — cheap there,
+//      and the coarse level's wide basins make a lattice this sparse safe;
+//   2. the best few distinct modes are refined coarse-to-fine by the
+//      Monte-Carlo matcher (no motion prior: there is no prior);
+//   3. the refined modes are ranked by their finest-level score. The best is
+//      the answer; the best *distinct* alternative is kept too, because a
+//      placement is only trustworthy when it clearly beats every other one
+//      (a corridor or a symmetric room fits several ways).
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "grid/multires_map.hpp"
+#include "matching/monte_carlo_matcher.hpp"
+#include "sensor/scan_points.hpp"
+
+namespace dsswarm {
+
+struct RelativePoseConfig {
+  double search_radius = 3.0;        // m around one's own position (the proximity range)
+  double coarse_step_xy = 0.15;      // m, lattice of the exhaustive search
+  double coarse_step_theta = 0.0524; // rad (3°)
+  int coarse_points = 90;            // scan points used by the exhaustive search
+  int candidates = 8;                // coarse modes refined
+  // Two placements are distinct modes when this far apart (either way).
+  double mode_separation_xy = 0.5;      // m
+  double mode_separation_theta = 0.26;  // rad (15°)
+  MatcherConfig refine{.evaluations = 600, .sigma_xy = 0.15, .sigma_theta = 0.04, .prior_weight = 0.0};
+
+  void validate() const;  // throws ConfigError naming the field
+};
+
+struct PoseHypothesis {
+  Pose2 pose;                  // foreign robot base pose in the own map frame
+  double score = 0.0;          // finest-level weighted occupancy, [0, 1]
+  double inlier_ratio = 0.0;   // see match_quality
+  double known_fraction = 0.0;
+};
+
+struct RelativePoseResult {
+  PoseHypothesis best;
+  std::optional<PoseHypothesis> runner_up;  // best placement distinct from `best`
+  int evaluations = 0;                      // pose evaluations spent
+};
+
+// `points`: the foreign scan in the foreign robot's base frame; `near`: one's
+// own position (the foreign robot is within search_radius of it).
+RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoint>& points,
+                               const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed);
+
+// Whether two placements are distinct modes under `config`.
+bool distinct_modes(const Pose2& a, const Pose2& b, const RelativePoseConfig& config);
+
+}  // namespace dsswarm

@@ -1,0 +1,98 @@
+#include "swarm/relative_pose.hpp"
+
+#include <gtest/gtest.h>
+
+#include "swarm/encounter.hpp"
+#include "swarm/test_scenes.hpp"
+
+namespace dsswarm {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Robot A mapped the room from a few poses; robot B, somewhere within 3 m
+// and facing anywhere, takes one scan.
+TEST(RelativePose, RecoversThePoseOfAScanWithAnyHeading) {
+  const World world = test::l_shaped_office();
+  const Pose2 a_frame{1.0, 1.0, 0.3};
+  Rng rng(11);
+  const MultiResMap map =
+      test::map_from(world, {{2.0, 1.5, 0.3}, {3.0, 2.5, 1.0}, {5.5, 2.0, 0.0}, {2.0, 5.0, 1.6}}, a_frame, rng);
+  const Pose2 a_pose = a_frame.inverse() * Pose2{3.0, 2.5, 1.0};
+  for (int trial = 0; trial < 6; ++trial) {
+    Pose2 b_world;
+    do {
+      b_world = {rng.uniform(0.6, 6.0), rng.uniform(0.6, 3.4), rng.uniform(-std::numbers::pi, std::numbers::pi)};
+    } while (!world.is_free(b_world.translation(), 0.3));
+    const Pose2 truth = a_frame.inverse() * b_world;
+    if ((truth.translation() - a_pose.translation()).norm() > 3.0) continue;
+    const RelativePoseResult r =
+        locate_scan(map, test::scan_at(world, b_world, rng), a_pose.translation(), RelativePoseConfig{}, 1 + trial);
+    EXPECT_NEAR(r.best.pose.x, truth.x, 0.05) << "trial " << trial;
+    EXPECT_NEAR(r.best.pose.y, truth.y, 0.05) << "trial " << trial;
+    EXPECT_NEAR(normalize_angle(r.best.pose.theta - truth.theta), 0.0, 1.0 * kDeg) << "trial " << trial;
+    EXPECT_GT(r.best.inlier_ratio, 0.8);
+  }
+}
+
+struct TwoRobots {
+  MultiResMap map_a, map_b;
+  EncounterView a, b;
+  Pose2 b_frame_in_a;  // truth
+};
+
+// Two robots that each mapped from their own start, now at a_world and b_world.
+TwoRobots meet(const World& world, const Pose2& a_start, const Pose2& b_start, const Pose2& a_world,
+               const Pose2& b_world, Rng& rng) {
+  TwoRobots t;
+  t.map_a = test::map_from(world, {a_start, a_world}, a_start, rng);
+  t.map_b = test::map_from(world, {b_start, b_world}, b_start, rng);
+  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world};
+  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world};
+  t.b_frame_in_a = a_start.inverse() * b_start;
+  return t;
+}
+
+TEST(Encounter, AcceptsAndRecoversTheTransformBetweenFrames) {
+  const World world = test::l_shaped_office();
+  Rng rng(2);
+  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  const EncounterEstimate e = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  ASSERT_TRUE(e.accepted) << e.reason;
+  EXPECT_NEAR(e.b_frame_in_a.x, t.b_frame_in_a.x, 0.05);
+  EXPECT_NEAR(e.b_frame_in_a.y, t.b_frame_in_a.y, 0.05);
+  EXPECT_NEAR(normalize_angle(e.b_frame_in_a.theta - t.b_frame_in_a.theta), 0.0, 0.5 * kDeg);
+  EXPECT_LT(e.disagreement_xy, 0.1);
+}
+
+TEST(Encounter, RejectsALongFeaturelessCorridor) {
+  // 2 m wide, far longer than the lidar reaches: every position along it fits.
+  const World world({{{-200, 0}, {200, 0}}, {{-200, 2}, {200, 2}}});
+  Rng rng(4);
+  TwoRobots t = meet(world, {0.0, 1.0, 0.0}, {2.0, 1.0, 3.0}, {0.5, 1.0, 0.0}, {2.0, 1.0, 3.0}, rng);
+  const EncounterEstimate e = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  EXPECT_FALSE(e.accepted);
+  EXPECT_NE(e.reason.find("ambiguous"), std::string::npos) << e.reason;
+}
+
+TEST(Encounter, RejectsASymmetricRoom) {
+  // An empty 6 × 4 m room looks the same turned by 180°.
+  const World world({{{0, 0}, {6, 0}}, {{6, 0}, {6, 4}}, {{6, 4}, {0, 4}}, {{0, 4}, {0, 0}}});
+  Rng rng(6);
+  TwoRobots t = meet(world, {2.0, 2.0, 0.0}, {4.0, 2.0, 1.0}, {2.0, 2.0, 0.0}, {4.0, 2.0, 1.0}, rng);
+  const EncounterEstimate e = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  EXPECT_FALSE(e.accepted);
+  EXPECT_NE(e.reason.find("ambiguous"), std::string::npos) << e.reason;
+}
+
+TEST(Encounter, RejectsWhenTheOtherRobotSeesUnmappedSpace) {
+  const World world = test::l_shaped_office();
+  Rng rng(8);
+  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  const MultiResMap empty;
+  t.a.map = &empty;
+  EXPECT_FALSE(estimate_encounter(t.a, t.b, EncounterConfig{}, 5).accepted);
+}
+
+}  // namespace
+}  // namespace dsswarm

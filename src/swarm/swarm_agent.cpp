@@ -1,0 +1,37 @@
+#include "swarm/swarm_agent.hpp"
+
+#include "swarm/map_merge.hpp"
+
+namespace dsswarm {
+
+SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config)
+    : name_(std::move(name)), slam_(config), knowledge_(name_) {}
+
+SlamStep SwarmAgent::process(const LaserScan& scan) {
+  last_scan_ = scan;
+  return slam_.process(scan);
+}
+
+EncounterView SwarmAgent::view() const {
+  EncounterView v;
+  v.map = &slam_.map();
+  v.pose = slam_.pose();
+  if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
+  return v;
+}
+
+MapSnapshot SwarmAgent::snapshot() const {
+  if (!own_copy_ || own_copy_version_ != slam_.scans_inserted()) {
+    own_copy_ = std::make_shared<const MultiResMap>(slam_.own_map());
+    own_copy_version_ = slam_.scans_inserted();
+  }
+  return knowledge_.snapshot(own_copy_, own_copy_version_);
+}
+
+bool SwarmAgent::merge(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
+  if (!knowledge_.absorb(snapshot, sender_in_self)) return false;
+  slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+  return true;
+}
+
+}  // namespace dsswarm

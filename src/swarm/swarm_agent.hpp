@@ -1,0 +1,47 @@
+#pragma once
+// One robot of the swarm: single-robot SLAM in its own frame, plus what it
+// has learnt from the others (per origin, see map_knowledge.hpp). It knows
+// nothing of the others until told one is near; then it offers its map and
+// current scan, and merges what the other offers once the encounter is
+// verified (encounter.hpp). Alone, or if every encounter fails, it is just a
+// single robot doing SLAM.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "slam/slam.hpp"
+#include "swarm/encounter.hpp"
+#include "swarm/map_knowledge.hpp"
+
+namespace dsswarm {
+
+class SwarmAgent {
+ public:
+  SwarmAgent(std::string name, const SlamConfig& config);
+
+  SlamStep process(const LaserScan& scan);
+
+  // What this robot puts on the table at an encounter.
+  EncounterView view() const;        // working map, current scan, pose
+  MapSnapshot snapshot() const;      // own map (layer 0) + everything known of others
+
+  // Takes in another robot's snapshot, whose sender's frame has pose
+  // `sender_in_self` here, and rebuilds the working map if anything is new.
+  // Returns whether anything was new.
+  bool merge(const MapSnapshot& snapshot, const Pose2& sender_in_self);
+
+  const std::string& name() const { return name_; }
+  const Slam& slam() const { return slam_; }
+  const MapKnowledge& knowledge() const { return knowledge_; }
+
+ private:
+  std::string name_;
+  Slam slam_;
+  MapKnowledge knowledge_;
+  std::optional<LaserScan> last_scan_;
+  // Frozen copy of the own map for snapshots, refreshed when the map grew.
+  mutable std::shared_ptr<const MultiResMap> own_copy_;
+  mutable std::size_t own_copy_version_ = 0;
+};
+
+}  // namespace dsswarm
