@@ -29,8 +29,8 @@ Eigen::Vector2d in_front_of_door(const Room& room, const Corridor& corridor) {
   return corridor.begin + (room.door - corridor.begin).dot(axis) * axis;
 }
 
-// A random spot in the room reachable in a straight line from inside the door,
-// or the room's safe spot (always reachable) when none is found.
+}  // namespace
+
 Eigen::Vector2d pick_room_spot(const World& world, const Room& room, Rng& rng) {
   const Eigen::Vector2d across(-room.into_room.y(), room.into_room.x());
   const Box area = room.area.expanded(-kSpotSideMargin);
@@ -51,8 +51,6 @@ Eigen::Vector2d pick_room_spot(const World& world, const Room& room, Rng& rng) {
   }
   return room.safe_spot;
 }
-
-}  // namespace
 
 std::vector<Eigen::Vector2d> World::waypoint_tour(std::uint64_t seed) const {
   const auto& rooms = layout_.rooms;

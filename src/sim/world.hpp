@@ -9,6 +9,8 @@
 
 namespace dsswarm {
 
+class Rng;
+
 struct Segment {
   Eigen::Vector2d a;
   Eigen::Vector2d b;
@@ -112,5 +114,11 @@ class World {
 };
 
 World generate_world(const WorldConfig& config);
+
+// The spot a tour drives to inside `room`: random, 1.5-3 m in from the door,
+// reachable in a straight line (0.6 m clearance) from room.inside_door; the
+// room's safe_spot when no such spot is found. (waypoint_tour uses it; the
+// swarm simulation too, so its robots look into rooms the same way.)
+Eigen::Vector2d pick_room_spot(const World& world, const Room& room, Rng& rng);
 
 }  // namespace dsswarm

@@ -1,0 +1,428 @@
+#include "sim/swarm_sim.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "common/errors.hpp"
+#include "common/rng.hpp"
+
+namespace dsswarm {
+namespace {
+
+constexpr int kMaxRobots = 64;
+// m between start spots and from the parking spots (the error message in pick_starts says 3 m)
+constexpr double kMinStartSeparation = 3.0;
+constexpr double kParkingSpacing = 1.0;      // m between neighbouring parking spots
+constexpr double kParkingClearance = 0.4;    // m from walls, as every tour leg keeps
+constexpr double kWaitAfterLastArrival = 10.0;  // s of scanning together once all are parked
+// Start spots in a room lie on the door axis between inside_door and
+// safe_spot (free of clutter by construction), at least this far along it.
+constexpr double kStartMinAlongLane = 0.3;
+constexpr double kCorridorStartSpacing = 6.0;  // m of corridor per candidate start spot
+constexpr double kCorridorEndMargin = 1.0;     // m: corridor start spots keep off the corridor ends
+constexpr double kStartClearance = 0.45;
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw ConfigError("swarm config: " + message);
+}
+
+// Independent random streams from one seed (SplitMix64 finaliser), as in the
+// single-robot simulation: planning, and each robot's odometry and lidar.
+std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream) {
+  std::uint64_t z = seed + stream * 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+std::size_t random_index(Rng& rng, std::size_t n) {
+  return std::min(n - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)));
+}
+
+template <typename T>
+void shuffle(std::vector<T>& items, Rng& rng) {  // Fisher-Yates (std::shuffle is not portable)
+  for (std::size_t i = items.size(); i > 1; --i) std::swap(items[i - 1], items[random_index(rng, i)]);
+}
+
+// A place on the corridor network: distance `s` along a corridor's centre line from its begin.
+struct NetworkPoint {
+  int corridor = 0;
+  double s = 0.0;
+};
+
+// The free centre lines of the corridors, joined at their begin ends (by the
+// spine): every route runs along them, so robots share the corridors and
+// meet there.
+class CorridorNetwork {
+ public:
+  explicit CorridorNetwork(const std::vector<Corridor>& corridors) : corridors_(corridors) {}
+
+  const Corridor& corridor(int c) const { return corridors_[static_cast<std::size_t>(c)]; }
+  Eigen::Vector2d axis(int c) const { return (corridor(c).end - corridor(c).begin).normalized(); }
+  double length(int c) const { return (corridor(c).end - corridor(c).begin).norm(); }
+  Eigen::Vector2d point(const NetworkPoint& p) const { return corridor(p.corridor).begin + p.s * axis(p.corridor); }
+  NetworkPoint project(int c, const Eigen::Vector2d& p) const {
+    return {c, std::clamp((p - corridor(c).begin).dot(axis(c)), 0.0, length(c))};
+  }
+
+  double distance(const NetworkPoint& a, const NetworkPoint& b) const {
+    if (a.corridor == b.corridor) return std::abs(a.s - b.s);
+    return a.s + (corridor(a.corridor).begin - corridor(b.corridor).begin).norm() + b.s;
+  }
+
+  // Waypoints from a to b (a itself is not emitted).
+  template <typename Go>
+  void route(const NetworkPoint& a, const NetworkPoint& b, Go&& go) const {
+    if (a.corridor != b.corridor) {
+      go(corridor(a.corridor).begin);
+      go(corridor(b.corridor).begin);
+    }
+    go(point(b));
+  }
+
+ private:
+  const std::vector<Corridor>& corridors_;
+};
+
+struct StartSpot {
+  Eigen::Vector2d position;
+  int room = -1;  // or -1 on a corridor
+  int corridor = 0;
+};
+
+// Parking spots on a square grid around the rendezvous centre, nearest first:
+// free, and reachable from the centre in a straight line.
+std::vector<Eigen::Vector2d> parking_spots(const World& world, const Eigen::Vector2d& centre, int robots) {
+  const int reach = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(robots)))) + 3;
+  struct Candidate {
+    int i, j;
+    Eigen::Vector2d position;
+  };
+  std::vector<Candidate> candidates;
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach; j <= reach; ++j) {
+      const Eigen::Vector2d p = centre + kParkingSpacing * Eigen::Vector2d(i, j);
+      if (world.is_segment_free(centre, p, kParkingClearance)) candidates.push_back({i, j, p});
+    }
+  // Integer keys keep the order exact (no floating-point ties).
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.i * a.i + a.j * a.j < b.i * b.i + b.j * b.j;
+  });
+  require(static_cast<int>(candidates.size()) >= robots,
+          "robots: only " + std::to_string(candidates.size()) + " parking spots fit around the rendezvous for " +
+              std::to_string(robots) + " robots; use a larger building (swarm_world_config)");
+  std::vector<Eigen::Vector2d> spots;
+  for (int r = 0; r < robots; ++r) spots.push_back(candidates[static_cast<std::size_t>(r)].position);
+  return spots;
+}
+
+// Random start spots in rooms (on the door axis) and corridors, pairwise at
+// least kMinStartSeparation apart and as far from every parking spot.
+std::vector<StartSpot> pick_starts(const World& world, const CorridorNetwork& network,
+                                   const std::vector<Eigen::Vector2d>& parking, int robots, Rng& rng) {
+  const BuildingLayout& layout = world.layout();
+  std::vector<StartSpot> candidates;
+  for (std::size_t k = 0; k < layout.rooms.size(); ++k) {
+    const Room& room = layout.rooms[k];
+    const double along = rng.uniform(kStartMinAlongLane, 1.0);
+    candidates.push_back(
+        {room.inside_door + along * (room.safe_spot - room.inside_door), static_cast<int>(k), room.corridor});
+  }
+  for (std::size_t c = 0; c < layout.corridors.size(); ++c) {
+    const int ci = static_cast<int>(c);
+    const double length = network.length(ci);
+    if (length <= 2 * kCorridorEndMargin) continue;
+    const int n = std::max(1, static_cast<int>(length / kCorridorStartSpacing));
+    for (int k = 0; k < n; ++k)
+      candidates.push_back(
+          {network.point({ci, rng.uniform(kCorridorEndMargin, length - kCorridorEndMargin)}), -1, ci});
+  }
+  shuffle(candidates, rng);
+
+  auto far_from = [](const Eigen::Vector2d& p, const auto& others, auto position_of) {
+    return std::all_of(others.begin(), others.end(),
+                       [&](const auto& o) { return (position_of(o) - p).norm() >= kMinStartSeparation; });
+  };
+  std::vector<StartSpot> starts;
+  for (const StartSpot& candidate : candidates) {
+    if (static_cast<int>(starts.size()) == robots) break;
+    if (!world.is_free(candidate.position, kStartClearance)) continue;
+    if (!far_from(candidate.position, parking, [](const Eigen::Vector2d& q) { return q; })) continue;
+    if (!far_from(candidate.position, starts, [](const StartSpot& s) { return s.position; })) continue;
+    starts.push_back(candidate);
+  }
+  require(static_cast<int>(starts.size()) == robots,
+          "robots: the building has room for only " + std::to_string(starts.size()) +
+              " start spots 3 m apart (and away from the rendezvous), not " + std::to_string(robots) +
+              "; use a larger building (swarm_world_config)");
+  return starts;
+}
+
+// Each robot gets a home corridor (robots spread evenly over the corridors);
+// a corridor's rooms are dealt round-robin by position among the robots at
+// home there, so every robot drives the length of its corridor and each
+// corridor is seen by several robots. On top, each robot visits one room of
+// someone else's share, so that maps also overlap inside rooms. A robot's
+// start room is not revisited. (Maps of different corridors overlap where
+// robots start away from home, on the spine and at the rendezvous.)
+std::vector<std::vector<int>> split_rooms(const World& world, const CorridorNetwork& network,
+                                          const std::vector<StartSpot>& starts, Rng& rng) {
+  const auto& rooms = world.layout().rooms;
+  const std::size_t robots = starts.size();
+  const std::size_t corridors = world.layout().corridors.size();
+  // Home corridors: as many robots per corridor as possible (robot j of a
+  // random order gets slot corridor j % corridors), each robot preferably
+  // at home where it starts, so that nobody crosses the building needlessly.
+  std::vector<std::size_t> order(robots);
+  for (std::size_t r = 0; r < robots; ++r) order[r] = r;
+  shuffle(order, rng);
+  std::vector<std::size_t> free_slots(corridors, 0);
+  for (std::size_t j = 0; j < robots; ++j) ++free_slots[j % corridors];
+  std::vector<std::size_t> home(robots, corridors);
+  for (std::size_t r : order) {
+    const auto c = static_cast<std::size_t>(starts[r].corridor);
+    if (free_slots[c] > 0) {
+      --free_slots[c];
+      home[r] = c;
+    }
+  }
+  for (std::size_t r : order)
+    for (std::size_t c = 0; c < corridors && home[r] == corridors; ++c)
+      if (free_slots[c] > 0) {
+        --free_slots[c];
+        home[r] = c;
+      }
+
+  std::vector<std::vector<int>> shares(robots);
+  for (std::size_t c = 0; c < corridors; ++c) {
+    std::vector<std::size_t> at_home;  // in the random order
+    for (std::size_t r : order)
+      if (home[r] == c) at_home.push_back(r);
+    if (at_home.empty()) at_home = order;  // fewer robots than corridors: everyone shares this one
+
+    std::vector<int> along;
+    for (std::size_t k = 0; k < rooms.size(); ++k)
+      if (rooms[k].corridor == static_cast<int>(c)) along.push_back(static_cast<int>(k));
+    auto position = [&](int k) {
+      const Room& room = rooms[static_cast<std::size_t>(k)];
+      return network.project(room.corridor, room.door).s;
+    };
+    std::stable_sort(along.begin(), along.end(), [&](int x, int y) { return position(x) < position(y); });
+    const std::size_t offset = random_index(rng, at_home.size());
+    for (std::size_t i = 0; i < along.size(); ++i) shares[at_home[(i + offset) % at_home.size()]].push_back(along[i]);
+  }
+
+  std::vector<std::vector<int>> visits(robots);
+  for (std::size_t r = 0; r < robots; ++r) {
+    std::vector<int> others, others_at_home;
+    for (std::size_t k = 0; k < rooms.size(); ++k) {
+      const int room = static_cast<int>(k);
+      if (room == starts[r].room) continue;
+      if (std::find(shares[r].begin(), shares[r].end(), room) != shares[r].end()) {
+        visits[r].push_back(room);
+      } else {
+        others.push_back(room);
+        if (static_cast<std::size_t>(rooms[k].corridor) == home[r]) others_at_home.push_back(room);
+      }
+    }
+    // The extra room from the home corridor: one more from far away would
+    // make the slowest robot (and so everyone's log) much longer.
+    const std::vector<int>& pool = others_at_home.empty() ? others : others_at_home;
+    if (!pool.empty()) visits[r].push_back(pool[random_index(rng, pool.size())]);
+  }
+  return visits;
+}
+
+// The order a robot visits its rooms in on its way to the rendezvous (the
+// first corridor's begin): corridor by corridor, along each one out to the
+// farthest room and then room by room back towards the begin end (the
+// shortest sweep that ends there), with the corridors in the order that
+// makes the whole trip shortest. Robots that start at different places thus
+// drive the shared corridors in both directions at different times, and
+// meet on the way.
+std::vector<int> visiting_order(const World& world, const CorridorNetwork& network, const NetworkPoint& start,
+                                const std::vector<int>& rooms_to_visit) {
+  constexpr std::size_t kMaxCorridorsToPermute = 6;  // 720 orders; beyond, by index
+  const auto& rooms = world.layout().rooms;
+  auto front_of = [&](int k) {
+    const Room& room = rooms[static_cast<std::size_t>(k)];
+    return network.project(room.corridor, room.door);
+  };
+  std::vector<int> corridors;
+  for (int k : rooms_to_visit) corridors.push_back(front_of(k).corridor);
+  std::sort(corridors.begin(), corridors.end());
+  corridors.erase(std::unique(corridors.begin(), corridors.end()), corridors.end());
+
+  auto order_for = [&](const std::vector<int>& corridor_order) {
+    std::vector<int> order;
+    for (int c : corridor_order) {
+      const std::size_t first = order.size();
+      for (int k : rooms_to_visit)
+        if (front_of(k).corridor == c) order.push_back(k);
+      std::stable_sort(order.begin() + static_cast<std::ptrdiff_t>(first), order.end(),
+                       [&](int a, int b) { return front_of(a).s > front_of(b).s; });
+    }
+    return order;
+  };
+  auto trip_length = [&](const std::vector<int>& order) {
+    double length = 0;
+    NetworkPoint at = start;
+    for (int k : order) {
+      length += network.distance(at, front_of(k));
+      at = front_of(k);
+    }
+    return length + network.distance(at, {0, 0.0});
+  };
+  std::vector<int> best = order_for(corridors);
+  if (corridors.size() <= kMaxCorridorsToPermute) {
+    double best_length = trip_length(best);
+    while (std::next_permutation(corridors.begin(), corridors.end())) {
+      std::vector<int> candidate = order_for(corridors);
+      const double length = trip_length(candidate);
+      if (length < best_length - 1e-9) {
+        best = std::move(candidate);
+        best_length = length;
+      }
+    }
+  }
+  return best;
+}
+
+// Waypoints of one robot: out of its start room, its rooms (visiting_order),
+// then the rendezvous and its parking spot.
+std::vector<Eigen::Vector2d> plan_route(const World& world, const CorridorNetwork& network, const StartSpot& start,
+                                        const std::vector<int>& rooms_to_visit, const Eigen::Vector2d& parking_spot,
+                                        Rng& rng) {
+  const auto& rooms = world.layout().rooms;
+  std::vector<Eigen::Vector2d> route;
+  auto go = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d& last = route.empty() ? start.position : route.back();
+    if ((last - p).norm() > 1e-6) route.push_back(p);
+  };
+  auto front_of = [&](const Room& room) { return network.project(room.corridor, room.door); };
+
+  NetworkPoint at = network.project(start.corridor, start.position);
+  if (start.room >= 0) {
+    const Room& room = rooms[static_cast<std::size_t>(start.room)];
+    go(room.inside_door);
+    at = front_of(room);
+    go(network.point(at));
+  }
+  for (int k : visiting_order(world, network, at, rooms_to_visit)) {
+    const Room& room = rooms[static_cast<std::size_t>(k)];
+    const NetworkPoint front = front_of(room);
+    network.route(at, front, go);
+    go(room.inside_door);
+    go(pick_room_spot(world, room, rng));
+    go(room.inside_door);
+    go(network.point(front));
+    at = front;
+  }
+  // To the parking spot from the nearest point of the first corridor (no
+  // detour through the rendezvous centre), or through the centre, from which
+  // every spot is reachable in a straight line.
+  const NetworkPoint beside_spot = network.project(0, parking_spot);
+  const bool direct = world.is_segment_free(network.point(beside_spot), parking_spot, kParkingClearance);
+  network.route(at, direct ? beside_spot : NetworkPoint{0, 0.0}, go);
+  go(parking_spot);
+  return route;
+}
+
+}  // namespace
+
+void validate(const SwarmSimConfig& c) {
+  require(c.robots >= 1 && c.robots <= kMaxRobots, "robots must be in [1, " + std::to_string(kMaxRobots) + "]");
+  validate(c.world);
+  validate(c.lidar);
+  validate(c.robot);
+}
+
+WorldConfig swarm_world_config(int robots) {
+  require(robots >= 1 && robots <= kMaxRobots, "robots must be in [1, " + std::to_string(kMaxRobots) + "]");
+  WorldConfig config;
+  constexpr double kRoomWidth = 7.5, kRoomDepth = 9.0;  // as in the default building
+  if (robots <= 3) {
+    // The default building with one more pair of rooms: a few minutes per robot.
+    config.rooms_x = 5;
+    config.width = config.rooms_x * kRoomWidth;
+  } else {
+    // About 2 rooms per robot, a corridor per 4 robots; rooms as in the
+    // default building. 3 m corridors leave a 3x3 grid of parking spots 1 m
+    // apart at the rendezvous (all within 3 m of each other).
+    const int corridors = (robots + 3) / 4;
+    config.rooms_y = 2 * corridors;
+    config.rooms_x = std::max(4, (2 * robots + config.rooms_y - 1) / config.rooms_y);
+    config.corridor_width = 3.0;
+    const double spine = corridors > 1 ? config.corridor_width : 0.0;
+    config.width = spine + config.rooms_x * kRoomWidth;
+    config.height = config.rooms_y * kRoomDepth + corridors * config.corridor_width;
+  }
+  validate(config);
+  return config;
+}
+
+SimulatedSwarm simulate_swarm(const SwarmSimConfig& config) {
+  validate(config);
+  SimulatedSwarm swarm{generate_world(config.world), {}, {}, {}, {}, {}};
+  const World& world = swarm.world;
+  const CorridorNetwork network(world.layout().corridors);
+  require(!world.layout().corridors.empty(), "world: the building has no corridors");
+  const auto robots = static_cast<std::size_t>(config.robots);
+  Rng plan_rng(stream_seed(config.seed, 0));
+
+  swarm.parking_spots = parking_spots(world, world.layout().corridors.front().begin, config.robots);
+  const std::vector<StartSpot> starts = pick_starts(world, network, swarm.parking_spots, config.robots, plan_rng);
+  const std::vector<std::vector<int>> visits = split_rooms(world, network, starts, plan_rng);
+
+  const double dt = 1.0 / config.lidar.rate_hz;
+  std::vector<DrivenPath> paths;
+  std::size_t longest = 0;
+  for (std::size_t r = 0; r < robots; ++r) {
+    const Pose2 start(starts[r].position.x(), starts[r].position.y(),
+                      plan_rng.uniform(-std::numbers::pi, std::numbers::pi));
+    const auto route = plan_route(world, network, starts[r], visits[r], swarm.parking_spots[r], plan_rng);
+    paths.push_back(drive_waypoints(route, start, config.robot, dt));
+    longest = std::max(longest, paths.back().poses.size());
+  }
+  // One clock for all: everyone scans until the last arrival plus a wait.
+  const std::size_t steps = longest + static_cast<std::size_t>(std::ceil(kWaitAfterLastArrival / dt));
+
+  swarm.rendezvous_area = {swarm.parking_spots.front(), swarm.parking_spots.front()};
+  for (const Eigen::Vector2d& p : swarm.parking_spots)
+    swarm.rendezvous_area = {swarm.rendezvous_area.min.cwiseMin(p), swarm.rendezvous_area.max.cwiseMax(p)};
+  swarm.rendezvous_area = swarm.rendezvous_area.expanded(0.5);
+
+  for (std::size_t r = 0; r < robots; ++r) {
+    DrivenPath& path = paths[r];
+    swarm.arrival_times.push_back(static_cast<double>(path.poses.size() - 1) / config.lidar.rate_hz);
+    path.poses.resize(steps, path.poses.back());  // parked: standing still, odometry too
+
+    const std::uint64_t robot_seed = stream_seed(config.seed, 1 + r);
+    Rng odometry_rng(stream_seed(robot_seed, 1));
+    Rng lidar_rng(stream_seed(robot_seed, 2));
+    const std::vector<Pose2> odometry = simulate_odometry(path.poses, config.robot, odometry_rng);
+
+    swarm.names.push_back("robot" + std::to_string(r + 1));
+    SimulatedRun run;
+    run.log.source = "simulated swarm, " + swarm.names.back() + " of " + std::to_string(robots) + " (world seed " +
+                     std::to_string(config.world.seed) + ", swarm seed " + std::to_string(config.seed) + ")";
+    if (!path.reached_goal)
+      run.log.warnings.push_back(swarm.names.back() + " ran out of time before its parking spot");
+    run.log.scans.reserve(steps);
+    run.ground_truth.reserve(steps);
+    for (std::size_t k = 0; k < steps; ++k) {
+      LaserScan scan = simulate_scan(world, path.poses[k] * config.robot.laser_offset, config.lidar, lidar_rng);
+      scan.timestamp = static_cast<double>(k) / config.lidar.rate_hz;
+      scan.odometry = odometry[k];
+      scan.laser_offset = config.robot.laser_offset;
+      run.ground_truth.emplace_back(scan.timestamp, path.poses[k]);
+      run.log.scans.push_back(std::move(scan));
+    }
+    swarm.runs.push_back(std::move(run));
+  }
+  return swarm;
+}
+
+}  // namespace dsswarm
