@@ -35,7 +35,28 @@ expect_error bad-config "matcher.evaluations" -- "$bin" run "$tmp/truncated.log"
 expect_error bad-option "--bogus" -- "$bin" run "$tmp/truncated.log" --bogus --out "$tmp/o8"
 expect_error bad-tum "bad.tum:1" -- "$bin" eval ate "$tmp/bad.tum" "$tmp/bad.tum"
 expect_error no-subcommand "subcommand" -- "$bin"
-for d in o1 o2 o3 o4 o5 o6 o7 o8; do
+
+# .dsmap maps (--save-map / --load-map): a valid one from a tiny log, then damaged copies.
+ranges=$(printf '2.0 %.0s' $(seq 180))
+for t in 1 2 3; do printf 'FLASER 180 %s0 0 0 0 0 0 %d.0 host %d.0\n' "$ranges" "$t" "$t"; done > "$tmp/small.log"
+if ! "$bin" run "$tmp/small.log" --out "$tmp/ok" --save-map "$tmp/good.dsmap" >/dev/null 2>&1 || [ ! -s "$tmp/good.dsmap" ]; then
+  echo "FAIL save-map: no map written"; fails=$((fails + 1))
+fi
+cp "$tmp/good.dsmap" "$tmp/corrupt.dsmap"
+printf '\x5a\x5a\x5a\x5a' | dd of="$tmp/corrupt.dsmap" bs=1 seek=40 conv=notrunc status=none
+head -c 40 "$tmp/good.dsmap" > "$tmp/cut.dsmap"
+printf 'P5 not a map\n' > "$tmp/text.dsmap"
+expect_error dsmap-missing "no_such.dsmap" -- "$bin" run "$tmp/small.log" --out "$tmp/o9" --load-map "$tmp/no_such.dsmap"
+expect_error dsmap-corrupt "corrupt.dsmap: checksum mismatch" -- "$bin" run "$tmp/small.log" --out "$tmp/o10" --load-map "$tmp/corrupt.dsmap"
+expect_error dsmap-truncated "cut.dsmap: truncated" -- "$bin" run "$tmp/small.log" --out "$tmp/o11" --load-map "$tmp/cut.dsmap"
+expect_error dsmap-not-a-map "text.dsmap: not a .dsmap file" -- "$bin" run "$tmp/small.log" --out "$tmp/o12" --load-map "$tmp/text.dsmap"
+expect_error dsmap-resolution "good.dsmap: the map has resolution 0.05 m" -- "$bin" run "$tmp/small.log" --out "$tmp/o13" --load-map "$tmp/good.dsmap" --resolution 0.1
+expect_error bad-start-pose "--start-pose" -- "$bin" run "$tmp/small.log" --out "$tmp/o14" --load-map "$tmp/good.dsmap" --start-pose 1,2
+expect_error start-pose-alone "load-map" -- "$bin" run "$tmp/small.log" --out "$tmp/o15" --start-pose 0,0,0
+if ! "$bin" run "$tmp/small.log" --out "$tmp/ok2" --load-map "$tmp/good.dsmap" --start-pose 0.05,0,0 >/dev/null 2>&1; then
+  echo "FAIL load-map: a valid map was refused"; fails=$((fails + 1))
+fi
+for d in o1 o2 o3 o4 o5 o6 o7 o8 o9 o10 o11 o12 o13 o14 o15; do
   if [ -e "$tmp/$d" ] && [ -n "$(ls -A "$tmp/$d")" ]; then echo "FAIL: partial outputs left in $tmp/$d"; fails=$((fails + 1)); fi
 done
 echo "$fails failed"

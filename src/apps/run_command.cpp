@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "apps/slam_options.hpp"
 #include "apps/slam_runner.hpp"
@@ -12,6 +14,7 @@
 #include "config/slam_config_json.hpp"
 #include "eval/ate.hpp"
 #include "io/logs/log_reader.hpp"
+#include "io/maps/dsmap.hpp"
 #include "sim/scenario.hpp"
 
 namespace dsswarm {
@@ -25,8 +28,14 @@ struct RunArgs {
   bool tf_odometry = false;
   std::string beams = "params";
   std::vector<double> laser_offset;
+  std::string save_map;    // .dsmap written at the end (the robot's own map)
+  std::string load_map;    // .dsmap to continue mapping in
+  std::string start_pose;  // "x,y,theta" in the loaded map's frame
   SlamOptions slam;
 };
+
+// Name of the robot in the maps it saves (`run` maps one robot).
+constexpr const char* kRobotName = "robot";
 
 Pose2 parse_offset(const std::vector<double>& v) {
   if (v.size() != 3) throw ConfigError("--laser-offset takes three numbers: x y theta");
@@ -39,7 +48,14 @@ void print_summary(const RunResult& r, const std::string& out) {
 }
 
 void run(const RunArgs& a) {
-  const SlamConfig config = a.slam.resolve();  // config errors before any work
+  SlamConfig config = a.slam.resolve();  // config and map-file errors before any work
+  std::optional<ContinuedMap> continued;
+  if (!a.load_map.empty()) {
+    continued = load_map_to_continue(a.load_map, config);
+    for (const auto& w : continued->warnings) spdlog::warn("{}", w);
+  }
+  const std::optional<Pose2> start_pose =
+      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(parse_pose_option(a.start_pose, "--start-pose"));
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
@@ -56,9 +72,25 @@ void run(const RunArgs& a) {
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
 
-  Slam slam(config);
-  const RunResult result = run_slam(log, slam);
-  write_run_outputs(a.out, result, slam, run_stats(result, slam, log, read_seconds));
+  // A loaded map is in the frame of the run that saved it, which began at its
+  // first scan's odometry pose: the same log (or one recorded from the same
+  // start) starts there by default.
+  std::unique_ptr<Slam> slam;
+  if (continued) {
+    const Pose2 start = start_pose.value_or(log.scans.front().odometry.value_or(Pose2()));
+    slam = std::make_unique<Slam>(config, std::move(continued->map), start);
+  } else {
+    slam = std::make_unique<Slam>(config);
+  }
+  const RunResult result = run_slam(log, *slam);
+  nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
+  if (!a.load_map.empty()) stats["load_map"] = a.load_map;
+  write_run_outputs(a.out, result, *slam, stats);
+  if (!a.save_map.empty()) {
+    const std::filesystem::path path(a.save_map);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    write_dsmap(a.save_map, own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
+  }
   print_summary(result, a.out);
 }
 
@@ -77,6 +109,13 @@ void add_run_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--laser-offset", args->laser_offset, "Laser pose on the robot: x y theta (m, m, rad)")
       ->expected(3);
+  cmd->add_option("--save-map", args->save_map, "Write the robot's map at the end of the run (.dsmap, see README)");
+  CLI::Option* load = cmd->add_option("--load-map", args->load_map,
+                                      "Continue mapping in a saved map (.dsmap; layer 0, with the file's evidence model)");
+  cmd->add_option("--start-pose", args->start_pose,
+                  "With --load-map: robot pose at the first scan in the map's frame, x,y,theta (m, m, rad); "
+                  "default: the first scan's odometry pose")
+      ->needs(load);
   add_slam_options(*cmd, args->slam);
   cmd->callback([args] { run(*args); });
 }

@@ -1,5 +1,10 @@
 #include "apps/slam_options.hpp"
 
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include "common/errors.hpp"
 #include "config/slam_config_json.hpp"
 
 namespace dsswarm {
@@ -25,6 +30,27 @@ SlamConfig SlamOptions::resolve() const {
   if (resolution) c.map.resolution = *resolution;
   c.validate();
   return c;
+}
+
+Pose2 parse_pose_option(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  for (bool last = false; !last;) {
+    const std::size_t comma = text.find(',', start);
+    last = comma == std::string::npos;
+    const char* stop = text.data() + (last ? text.size() : comma);
+    double v = 0.0;
+    const auto [parsed_to, ec] = std::from_chars(text.data() + start, stop, v);
+    if (ec != std::errc() || parsed_to != stop || !std::isfinite(v)) {
+      values.clear();
+      break;
+    }
+    values.push_back(v);
+    start = comma + 1;
+  }
+  if (values.size() != 3)
+    throw ConfigError(option + ": expected x,y,theta (metres, metres, radians; three finite numbers), got '" + text + "'");
+  return {values[0], values[1], values[2]};
 }
 
 }  // namespace dsswarm

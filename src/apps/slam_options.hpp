@@ -23,4 +23,8 @@ struct SlamOptions {
 
 void add_slam_options(CLI::App& command, SlamOptions& options);
 
+// "x,y,theta" (metres, metres, radians) as given to `--start-pose`. Throws
+// ConfigError naming `option` unless it is exactly three finite numbers.
+Pose2 parse_pose_option(const std::string& text, const std::string& option);
+
 }  // namespace dsswarm

@@ -5,8 +5,10 @@
 
 #include <chrono>
 
+#include "common/errors.hpp"
 #include "config/slam_config_json.hpp"
 #include "io/atomic_file.hpp"
+#include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"
 #include "io/maps/render.hpp"
 
@@ -90,6 +92,43 @@ void write_run_outputs(const std::filesystem::path& dir, const RunResult& result
     write_png(dir / "map.png", picture);
   }
   write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+}
+
+MapSnapshot own_map_snapshot(const Slam& slam, const std::string& sender, std::uint64_t previous_version) {
+  MapSnapshot snapshot;
+  snapshot.sender = sender;
+  snapshot.layers.push_back({sender, previous_version + slam.scans_inserted(), Pose2(), 0,
+                             std::make_shared<const MultiResMap>(slam.own_map())});
+  return snapshot;
+}
+
+ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config) {
+  const MapSnapshot snapshot = read_dsmap(path);
+  if (snapshot.layers.empty()) throw InputError(path + ": the map file holds no map layer");
+  const MapLayer& layer = snapshot.layers.front();
+  const MapConfig& file = layer.map->config();
+  if (file.resolution != config.map.resolution || file.levels != config.map.levels)
+    throw InputError(fmt::format("{}: the map has resolution {} m and {} levels, the configuration {} m and {} levels "
+                                 "(set map.resolution / map.levels or --resolution to match the file)",
+                                 path, file.resolution, file.levels, config.map.resolution, config.map.levels));
+  ContinuedMap result{MultiResMap(), layer.version, {}};
+  if (snapshot.layers.size() > 1)
+    result.warnings.push_back(fmt::format("{}: {} layers; continuing in layer 0 ('{}', the sender's own map) only",
+                                          path, snapshot.layers.size(), layer.origin));
+  const EvidenceModel& ours = config.map.evidence;
+  if (file.evidence.hit_occupied != ours.hit_occupied || file.evidence.pass_free != ours.pass_free ||
+      file.evidence.min_unknown != ours.min_unknown)
+    result.warnings.push_back(fmt::format(
+        "{}: continuing with the map's evidence model (hit_occupied {}, pass_free {}, min_unknown {}) instead of "
+        "the configuration's ({}, {}, {})",
+        path, file.evidence.hit_occupied, file.evidence.pass_free, file.evidence.min_unknown, ours.hit_occupied,
+        ours.pass_free, ours.min_unknown));
+  // New evidence must be weighed as the old was; the other map settings
+  // (how scans are inserted) stay the configuration's.
+  config.map.evidence = file.evidence;
+  result.map = MultiResMap(config.map);
+  for (int l = 0; l < result.map.levels(); ++l) result.map.mutable_level(l) = layer.map->level(l);
+  return result;
 }
 
 }  // namespace dsswarm

@@ -9,6 +9,7 @@
 #include "io/trajectory/tum.hpp"
 #include "sensor/laser_scan.hpp"
 #include "slam/slam.hpp"
+#include "swarm/map_snapshot.hpp"
 
 namespace dsswarm {
 
@@ -31,6 +32,24 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
 // Each file is written atomically; the directory is created if needed.
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                        const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
+
+// The robot's own map as a one-layer snapshot (what `run --save-map` writes):
+// origin = sender, identity pose, hops 0, version = `previous_version` (the
+// version of a map the run continued in) + the scans this run inserted.
+MapSnapshot own_map_snapshot(const Slam& slam, const std::string& sender, std::uint64_t previous_version = 0);
+
+// A saved map to continue mapping in (`run --load-map`).
+struct ContinuedMap {
+  MultiResMap map;                    // layer 0 of the file, with `config`'s insertion settings
+  std::uint64_t version = 0;          // the layer's version (scans already in it)
+  std::vector<std::string> warnings;  // extra layers ignored, evidence model taken from the file
+};
+
+// Reads layer 0 of the .dsmap file `path`. Throws InputError naming the file
+// and both values when its resolution or level count differs from
+// `config.map`'s, or when it holds no layer. The map keeps the evidence model
+// it was built with: `config.map.evidence` is set to the file's.
+ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config);
 
 // Peak resident set size of this process, bytes.
 std::size_t peak_rss_bytes();
