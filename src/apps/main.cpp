@@ -7,13 +7,14 @@
 #include "apps/eval_command.hpp"
 #include "apps/filter_command.hpp"
 #include "apps/run_command.hpp"
+#include "apps/swarm_command.hpp"
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"dsswarm: decentralized multi-robot 2D laser SLAM on small computers"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "dsswarm 0.1.0");
-  dsswarm::add_demo_command(app);
+  dsswarm::add_swarm_demo_command(app);
   dsswarm::add_run_command(app);
   dsswarm::add_filter_command(app);
   dsswarm::add_eval_command(app);

@@ -12,6 +12,7 @@ void EncounterConfig::validate() const {
   auto unit = [](double v) { return v >= 0.0 && v <= 1.0; };
   if (!unit(min_known_fraction)) throw ConfigError("encounter.min_known_fraction must be in [0, 1]");
   if (!unit(min_inlier_ratio)) throw ConfigError("encounter.min_inlier_ratio must be in [0, 1]");
+  if (!unit(min_same_side)) throw ConfigError("encounter.min_same_side must be in [0, 1]");
   if (!unit(max_runner_up_ratio)) throw ConfigError("encounter.max_runner_up_ratio must be in [0, 1]");
   if (!(agree_xy > 0.0) || !(agree_theta > 0.0)) throw ConfigError("encounter.agree_xy and agree_theta must be > 0");
 }
@@ -28,11 +29,14 @@ std::string placement_problem(const RelativePoseResult& r, const EncounterConfig
   if (best.inlier_ratio < config.min_inlier_ratio)
     return fmt::format("{}: {}'s scan fits its map poorly (inliers {:.2f} < {:.2f})", who, whom, best.inlier_ratio,
                        config.min_inlier_ratio);
-  if (r.runner_up && r.runner_up->score > config.max_runner_up_ratio * best.score) {
+  if (best.same_side_ratio < config.min_same_side)
+    return fmt::format("{}: {}'s scan meets its walls from the other side ({:.2f} < {:.2f} seen from the same side)",
+                       who, whom, best.same_side_ratio, config.min_same_side);
+  if (r.runner_up && r.runner_up->surroundings_score > config.max_runner_up_ratio * best.surroundings_score) {
     const Pose2 d = between(best.pose, r.runner_up->pose);
     return fmt::format("{}: ambiguous: another placement of {} {:.2f} m / {:.0f}° away scores {:.2f} of the best",
                        who, whom, std::hypot(d.x, d.y), std::abs(d.theta) * 180.0 / M_PI,
-                       r.runner_up->score / std::max(best.score, 1e-9));
+                       r.runner_up->surroundings_score / std::max(best.surroundings_score, 1e-9));
   }
   return "";
 }
@@ -44,8 +48,8 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
   config.validate();
   if (!a.map || !b.map) throw ConfigError("estimate_encounter: both views need a map");
   EncounterEstimate e;
-  e.a_locates_b = locate_scan(*a.map, b.points, a.pose.translation(), config.locate, seed);
-  e.b_locates_a = locate_scan(*b.map, a.points, b.pose.translation(), config.locate, seed + 1);
+  e.a_locates_b = locate_scan(*a.map, b.points, a.pose.translation(), config.locate, seed, b.surroundings);
+  e.b_locates_a = locate_scan(*b.map, a.points, b.pose.translation(), config.locate, seed + 1, a.surroundings);
   if (b.points.empty() || a.points.empty()) {
     e.reason = "a robot has no valid scan points";
     return e;

@@ -21,9 +21,10 @@ struct EncounterConfig {
   RelativePoseConfig locate;
   double min_known_fraction = 0.5;  // share of the foreign scan that must land on mapped cells
   double min_inlier_ratio = 0.6;    // share of those that must land on obstacles
+  double min_same_side = 0.8;       // share of those obstacles seen from the same side (same_side_ratio)
   double max_runner_up_ratio = 0.9; // the best alternative must score below this share of the best
-  double agree_xy = 0.15;           // m: the two directions' estimates of a robot's position
-  double agree_theta = 0.035;       // rad (2°)
+  double agree_xy = 0.08;           // m: the two directions' estimates of a robot's position
+  double agree_theta = 0.0175;      // rad (1°)
 
   void validate() const;  // throws ConfigError naming the field
 };
@@ -31,9 +32,13 @@ struct EncounterConfig {
 // What one robot contributes: the map it localizes in, its current scan
 // (robot base frame) and its pose in its own map frame.
 struct EncounterView {
-  const MultiResMap* map = nullptr;
+  const MultiResMap* map = nullptr;  // the map it localizes in
   std::vector<ScanPoint> points;
   Pose2 pose;
+  // Obstacles of its own map around it, in its base frame (surroundings_points):
+  // the other side could cut them from the snapshot it receives; sent
+  // ready-made they cost no more than the scan.
+  std::vector<ScanPoint> surroundings;
 };
 
 struct EncounterEstimate {

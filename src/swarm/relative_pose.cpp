@@ -16,6 +16,9 @@ void RelativePoseConfig::validate() const {
     throw ConfigError("encounter.coarse_step_theta must be in [0.005, 0.5] rad");
   if (coarse_points < 10) throw ConfigError("encounter.coarse_points must be >= 10");
   if (candidates < 2 || candidates > 100) throw ConfigError("encounter.candidates must be in [2, 100]");
+  if (!(surroundings_radius >= 0.0 && surroundings_radius <= 100.0))
+    throw ConfigError("encounter.surroundings_radius must be in [0, 100] m");
+  if (surroundings_points < 0) throw ConfigError("encounter.surroundings_points must be >= 0");
   if (!(mode_separation_xy > 0.0) || !(mode_separation_theta > 0.0))
     throw ConfigError("encounter.mode_separation_xy and mode_separation_theta must be > 0");
   refine.validate();
@@ -27,6 +30,23 @@ bool distinct_modes(const Pose2& a, const Pose2& b, const RelativePoseConfig& co
 }
 
 namespace {
+
+// How much the map agrees with points placed at `pose`: the mean over points
+// of (occupied − free) mass, bilinear at each point. Points in unexplored
+// space count 0, points in space the map has seen free count against — so a
+// wrong placement is penalized for every wall it puts where the map saw
+// nothing, which the plain score (occupied only) cannot tell from unexplored.
+double evidence_agreement(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
+  if (points.empty()) return 0.0;
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  double sum = 0.0;
+  for (const ScanPoint& p : points) {
+    const double wx = pose.x + c * p.x - s * p.y, wy = pose.y + s * p.x + c * p.y;
+    // occupied − free = 2 × occupancy − 1 with unknown counting half.
+    sum += 2.0 * interpolated_occupancy(grid, wx, wy, 0.5f) - 1.0;
+  }
+  return sum / static_cast<double>(points.size());
+}
 
 struct Coarse {
   float score;
@@ -79,8 +99,61 @@ std::vector<Pose2> distinct_best(std::vector<Coarse> all, int count, const Relat
 
 }  // namespace
 
+double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
+  constexpr float kObstacle = 0.15f;   // as in match_quality
+  constexpr float kSeenFree = 0.08f;   // two beams' worth of free evidence
+  constexpr double kApproach = 0.15;   // m before the hit: beyond the surface's own blur
+  const Eigen::Vector2d origin = pose.translation();
+  double inliers = 0.0, same_side = 0.0;
+  for (const ScanPoint& p : points) {
+    const Eigen::Vector2d hit = pose * Eigen::Vector2d(p.x, p.y);
+    const CellIndex c = grid.cell_of(hit);
+    bool obstacle = false;
+    for (int dy = -1; dy <= 1 && !obstacle; ++dy)
+      for (int dx = -1; dx <= 1 && !obstacle; ++dx) {
+        const DsMass m = grid.at({c.x + dx, c.y + dy});
+        obstacle = m.occupied >= kObstacle && m.occupied > m.free;
+      }
+    if (!obstacle) continue;
+    inliers += p.weight;
+    const Eigen::Vector2d to_hit = hit - origin;
+    const double range = to_hit.norm();
+    if (range <= kApproach) continue;
+    const DsMass before = grid.at(grid.cell_of(hit - to_hit * (kApproach / range)));
+    if (before.free >= kSeenFree && before.free > before.occupied) same_side += p.weight;
+  }
+  return inliers > 0.0 ? same_side / inliers : 0.0;
+}
+
+std::vector<ScanPoint> surroundings_points(const MultiResMap& map, const Pose2& robot_pose, double radius,
+                                           int max_points) {
+  const DsGrid& grid = map.finest();
+  const Pose2 to_base = robot_pose.inverse();
+  std::vector<ScanPoint> all;
+  const double r2 = radius * radius;
+  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    const Eigen::Vector2d corner = grid.cell_center(origin);
+    const double reach = radius + DsGrid::kTileSize * grid.resolution() * 1.5;
+    if ((corner - robot_pose.translation()).squaredNorm() > reach * reach) return;
+    for (int i = 0; i < DsGrid::kTileCells; ++i) {
+      const DsMass& m = cells[i];
+      if (m.occupied < 0.5f || m.occupied <= m.free) continue;
+      const Eigen::Vector2d w = grid.cell_center({origin.x + (i & (DsGrid::kTileSize - 1)), origin.y + (i >> DsGrid::kTileBits)});
+      if ((w - robot_pose.translation()).squaredNorm() > r2) continue;
+      const Eigen::Vector2d b = to_base * w;
+      all.push_back({static_cast<float>(b.x()), static_cast<float>(b.y()), 1.0f});
+    }
+  });
+  if (max_points <= 0 || static_cast<int>(all.size()) <= max_points) return all;
+  std::vector<ScanPoint> thinned;
+  const double step = static_cast<double>(all.size()) / max_points;
+  for (int k = 0; k < max_points; ++k) thinned.push_back(all[static_cast<std::size_t>(k * step)]);
+  return thinned;
+}
+
 RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoint>& points,
-                               const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed) {
+                               const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed,
+                               const std::vector<ScanPoint>& surroundings) {
   config.validate();
   RelativePoseResult result;
   if (points.empty()) return result;
@@ -94,12 +167,33 @@ RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoi
   for (const Pose2& start : starts) {
     const MatchResult m = matcher.match(map, points, start);
     result.evaluations += m.evaluations;
-    const MatchQuality q = match_quality(map.finest(), points, m.pose);
-    refined.push_back({m.pose, m.score, q.inlier_ratio, q.known_fraction});
+    const double around = surroundings.empty() ? m.score : evidence_agreement(map.finest(), surroundings, m.pose);
+    refined.push_back({m.pose, m.score, around, 0.0, 0.0});
   }
-  std::sort(refined.begin(), refined.end(),
-            [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.score > b.score; });
+  std::sort(refined.begin(), refined.end(), [](const PoseHypothesis& a, const PoseHypothesis& b) {
+    return a.surroundings_score > b.surroundings_score;
+  });
   if (refined.empty()) return result;
+  if (!surroundings.empty()) {
+    // Final placement: the scan and the surroundings together.
+    std::vector<ScanPoint> both = points;
+    both.insert(both.end(), surroundings.begin(), surroundings.end());
+    MatcherConfig fine = config.refine;
+    fine.sigma_xy = 0.03;
+    fine.sigma_theta = 0.01;
+    MonteCarloMatcher polisher(fine, seed + 1);
+    const MatchResult m = polisher.match(map, both, refined.front().pose);
+    result.evaluations += m.evaluations;
+    refined.front().pose = m.pose;
+    refined.front().score = score_pose(map.finest(), points, m.pose);
+    refined.front().surroundings_score = evidence_agreement(map.finest(), surroundings, m.pose);
+  }
+  for (PoseHypothesis& h : refined) {
+    const MatchQuality q = match_quality(map.finest(), points, h.pose);
+    h.inlier_ratio = q.inlier_ratio;
+    h.known_fraction = q.known_fraction;
+    h.same_side_ratio = same_side_ratio(map.finest(), points, h.pose);
+  }
   result.best = refined.front();
   for (std::size_t i = 1; i < refined.size(); ++i)
     if (distinct_modes(refined[i].pose, result.best.pose, config)) {

@@ -8,10 +8,14 @@
 //      and the coarse level's wide basins make a lattice this sparse safe;
 //   2. the best few distinct modes are refined coarse-to-fine by the
 //      Monte-Carlo matcher (no motion prior: there is no prior);
-//   3. the refined modes are ranked by their finest-level score. The best is
-//      the answer; the best *distinct* alternative is kept too, because a
-//      placement is only trustworthy when it clearly beats every other one
-//      (a corridor or a symmetric room fits several ways).
+//   3. the refined modes are ranked by how well the foreign robot's
+//      *surroundings* fit — the obstacles of its own map within a few metres,
+//      which it sends anyway with its map: one scan of a corridor fits many
+//      places, the walls, doors and rooms around it far fewer. The best mode
+//      is refined once more with those points (hundreds of walls cells pin
+//      the pose better than one scan) and is the answer; the best *distinct*
+//      alternative is kept too, because a placement is only trustworthy when
+//      it clearly beats every other one.
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -28,7 +32,9 @@ struct RelativePoseConfig {
   double coarse_step_xy = 0.15;      // m, lattice of the exhaustive search
   double coarse_step_theta = 0.0524; // rad (3°)
   int coarse_points = 90;            // scan points used by the exhaustive search
-  int candidates = 8;                // coarse modes refined
+  int candidates = 12;               // coarse modes refined
+  double surroundings_radius = 8.0;  // m around the foreign robot (step 3)
+  int surroundings_points = 2000;    // at most this many obstacle cells
   // Two placements are distinct modes when this far apart (either way).
   double mode_separation_xy = 0.5;      // m
   double mode_separation_theta = 0.26;  // rad (15°)
@@ -39,9 +45,18 @@ struct RelativePoseConfig {
 
 struct PoseHypothesis {
   Pose2 pose;                  // foreign robot base pose in the own map frame
-  double score = 0.0;          // finest-level weighted occupancy, [0, 1]
+  double score = 0.0;          // finest-level weighted occupancy of the scan, [0, 1]
+  // The ranking: mean (occupied − free) mass under the surroundings points,
+  // in [−1, 1] (= score when there are no surroundings).
+  double surroundings_score = 0.0;
   double inlier_ratio = 0.0;   // see match_quality
   double known_fraction = 0.0;
+  // Of the scan points that land on obstacles, the weight share whose beam,
+  // just before the hit, runs through space the map has seen free: the
+  // obstacle was seen from the same side. A thin wall seen from opposite
+  // sides fits either way when shifted by its thickness, and only this
+  // tells the two apart (see same_side_ratio).
+  double same_side_ratio = 0.0;
 };
 
 struct RelativePoseResult {
@@ -51,9 +66,21 @@ struct RelativePoseResult {
 };
 
 // `points`: the foreign scan in the foreign robot's base frame; `near`: one's
-// own position (the foreign robot is within search_radius of it).
+// own position (the foreign robot is within search_radius of it);
+// `surroundings`: obstacle cells of the foreign map around the foreign robot,
+// in its base frame (see surroundings_points), or empty to rank by the scan.
 RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoint>& points,
-                               const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed);
+                               const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed,
+                               const std::vector<ScanPoint>& surroundings = {});
+
+// Obstacle cells (occupied mass ≥ 0.5) of `map`'s finest level within
+// `radius` of `robot_pose`, as points in the robot's base frame, thinned
+// evenly to at most `max_points`.
+std::vector<ScanPoint> surroundings_points(const MultiResMap& map, const Pose2& robot_pose, double radius,
+                                           int max_points);
+
+// The same_side_ratio of `points` (robot base frame) placed at `pose`.
+double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose);
 
 // Whether two placements are distinct modes under `config`.
 bool distinct_modes(const Pose2& a, const Pose2& b, const RelativePoseConfig& config);

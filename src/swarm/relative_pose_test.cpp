@@ -45,10 +45,18 @@ struct TwoRobots {
 TwoRobots meet(const World& world, const Pose2& a_start, const Pose2& b_start, const Pose2& a_world,
                const Pose2& b_world, Rng& rng) {
   TwoRobots t;
-  t.map_a = test::map_from(world, {a_start, a_world}, a_start, rng);
-  t.map_b = test::map_from(world, {b_start, b_world}, b_start, rng);
-  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world};
-  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world};
+  // Each drove from its start to where it is now, scanning on the way.
+  auto drive = [](const Pose2& from, const Pose2& to) {
+    std::vector<Pose2> path;
+    for (int k = 0; k <= 10; ++k) path.push_back(interpolate(from, to, k / 10.0));
+    return path;
+  };
+  t.map_a = test::map_from(world, drive(a_start, a_world), a_start, rng);
+  t.map_b = test::map_from(world, drive(b_start, b_world), b_start, rng);
+  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world, {}};
+  t.a.surroundings = surroundings_points(t.map_a, t.a.pose, 8.0, 2000);
+  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world, {}};
+  t.b.surroundings = surroundings_points(t.map_b, t.b.pose, 8.0, 2000);
   t.b_frame_in_a = a_start.inverse() * b_start;
   return t;
 }

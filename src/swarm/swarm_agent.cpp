@@ -12,11 +12,13 @@ SlamStep SwarmAgent::process(const LaserScan& scan) {
   return slam_.process(scan);
 }
 
-EncounterView SwarmAgent::view() const {
+EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   EncounterView v;
   v.map = &slam_.map();
   v.pose = slam_.pose();
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
+  v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
+                                        config.surroundings_points);
   return v;
 }
 

@@ -22,7 +22,8 @@ class SwarmAgent {
   SlamStep process(const LaserScan& scan);
 
   // What this robot puts on the table at an encounter.
-  EncounterView view() const;        // working map, current scan, pose
+  // Working map, current scan, pose and surroundings (as `config` asks).
+  EncounterView view(const RelativePoseConfig& config) const;
   MapSnapshot snapshot() const;      // own map (layer 0) + everything known of others
 
   // Takes in another robot's snapshot, whose sender's frame has pose
