@@ -12,6 +12,7 @@
 #include "eval/ate.hpp"
 #include "eval/metrics_json.hpp"
 #include "eval/relations.hpp"
+#include "eval/swarm_eval.hpp"
 #include "io/trajectory/tum.hpp"
 
 namespace dsswarm {
@@ -24,6 +25,15 @@ struct RelationsOptions {
   std::string trajectory;
   std::string relations;
   double max_dt = 0.001;
+};
+
+struct SwarmOptions {
+  std::string dir;
+  std::string relations;
+  double max_dt = 0.001;
+  std::size_t max_hops = SwarmEvalOptions{}.max_hops;
+  double bridge = SwarmEvalOptions{}.bridge;
+  bool json = false;
 };
 
 struct AteOptions {
@@ -62,6 +72,18 @@ void run_ate(const AteOptions& o) {
   std::fflush(stdout);
 }
 
+void run_swarm(const SwarmOptions& o) {
+  const SwarmOutput output = read_swarm_output(o.dir);
+  const std::vector<Relation> relations = read_relations(o.relations);
+  const SwarmEvaluation ev = evaluate_swarm(output, relations, {o.max_dt, o.max_hops, o.bridge});
+  if (o.json) {
+    fmt::print("{}\n", to_json(ev).dump(2));
+  } else {
+    fmt::print("{} against {}\n{}", o.dir, o.relations, format_swarm_evaluation(ev));
+  }
+  std::fflush(stdout);
+}
+
 // CLI11's NonNegativeNumber prints DBL_MAX in full when it fails; say it plainly.
 CLI::Validator non_negative_seconds() {
   return CLI::Validator(
@@ -91,6 +113,28 @@ void add_eval_command(CLI::App& app) {
       ->capture_default_str()
       ->check(non_negative_seconds());
   relations_cmd->callback([rel] { run_relations(*rel); });
+
+  auto swarm = std::make_shared<SwarmOptions>();
+  CLI::App* swarm_cmd = eval->add_subcommand(
+      "swarm", "Score a `dsswarm swarm` output folder: per-agent and cross-agent relations, encounter transforms");
+  swarm_cmd->add_option("dir", swarm->dir, "Output folder of `dsswarm swarm`")->required();
+  swarm_cmd->add_option("relations", swarm->relations, "Ground-truth relations file of the log played")->required();
+  swarm_cmd
+      ->add_option("--max-dt", swarm->max_dt, "Largest accepted time difference between a relation and a pose (s)")
+      ->capture_default_str()
+      ->check(non_negative_seconds());
+  swarm_cmd
+      ->add_option("--max-hops", swarm->max_hops,
+                   "Longest chain of relations accepted as the truth of an encounter")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100}));
+  swarm_cmd
+      ->add_option("--bridge", swarm->bridge,
+                   "How far (s) from the exchanged scans an encounter may be checked at relation timestamps (0: never)")
+      ->capture_default_str()
+      ->check(non_negative_seconds());
+  swarm_cmd->add_flag("--json", swarm->json, "Print the evaluation as one JSON object instead of tables");
+  swarm_cmd->callback([swarm] { run_swarm(*swarm); });
 
   auto ate = std::make_shared<AteOptions>();
   CLI::App* ate_cmd = eval->add_subcommand("ate", "Absolute trajectory error against a ground-truth trajectory");

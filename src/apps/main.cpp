@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "dsswarm 0.1.0");
   dsswarm::add_swarm_demo_command(app);
+  dsswarm::add_swarm_command(app);
   dsswarm::add_run_command(app);
   dsswarm::add_filter_command(app);
   dsswarm::add_eval_command(app);

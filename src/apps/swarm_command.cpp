@@ -1,12 +1,17 @@
 #include "apps/swarm_command.hpp"
 
 #include <fmt/core.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <memory>
 
 #include "apps/slam_options.hpp"
 #include "apps/swarm_runner.hpp"
+#include "apps/swarm_scenario.hpp"
+#include "eval/relations.hpp"
+#include "eval/swarm_eval.hpp"
+#include "io/atomic_file.hpp"
 #include "sim/proximity.hpp"
 #include "sim/swarm_sim.hpp"
 
@@ -78,7 +83,56 @@ void run_demo(const DemoArgs& a) {
              stats["wrong_merges"].get<std::size_t>());
 }
 
+struct SwarmArgs {
+  std::string scenario;
+  std::string out;
+  bool no_merge = false;
+  SlamOptions slam;
+};
+
+void run_scenario(SwarmArgs a) {
+  SwarmScenario scenario = load_swarm_scenario(a.scenario);
+  for (const std::string& w : scenario.warnings) spdlog::warn("{}", w);
+  if (a.slam.config_file.empty() && scenario.config) a.slam.config_file = *scenario.config;
+  SwarmConfig config;
+  config.slam = a.slam.resolve();
+  config.merge = !a.no_merge;
+  std::size_t scans = 0;
+  for (const AgentStream& s : scenario.streams) scans += s.scans.size();
+  fmt::print("scenario {}: {} agents, {} scans, {} scripted encounters\n", scenario.name, scenario.streams.size(),
+             scans, scenario.events.size());
+  SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config, dsmap_transport());
+  const double seconds = run_swarm_session(session, scenario.name);
+  const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds);
+  fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
+             stats["scans_per_second"].get<double>(), a.out);
+  print_encounter_summary(stats);
+  for (const EncounterRecord& r : session.encounters())
+    fmt::print("  t={:.1f} s {}–{}: {}\n", r.time, r.a, r.b, r.accepted ? "accepted" : "rejected: " + r.reason);
+  if (!scenario.relations.empty()) {
+    // The scenario names its relations: score the run right away.
+    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), read_relations(scenario.relations));
+    const std::filesystem::path out(a.out);
+    write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
+    fmt::print("{}", format_swarm_evaluation(ev));
+  }
+}
+
 }  // namespace
+
+void add_swarm_command(CLI::App& app) {
+  auto args = std::make_shared<SwarmArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "swarm", "Several robots from recorded logs (scenario file: agents, log segments, encounters), each mapping in "
+               "its own frame and merging maps when they meet");
+  cmd->add_option("scenario", args->scenario, "Scenario YAML (see scenarios/README.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", args->out, "Output directory (created if needed)")->required();
+  cmd->add_flag("--no-merge", args->no_merge, "Ignore encounters: every robot maps alone (the baseline)");
+  add_slam_options(*cmd, args->slam);
+  cmd->callback([args] { run_scenario(*args); });
+}
 
 void add_swarm_demo_command(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();

@@ -190,6 +190,10 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   }
 
   // Encounters.
+  std::vector<Pose2> alignments;  // per agent: own map frame -> world, best fit of the whole trajectory
+  if (truth)
+    for (std::size_t i = 0; i < s.agents(); ++i)
+      alignments.push_back(evaluate_ate(own_trajectory(s.track(i)), truth->world_poses[i]).alignment);
   nlohmann::json list = nlohmann::json::array();
   std::size_t accepted = 0;
   double match_ms = 0.0, merge_ms = 0.0, bytes = 0.0, worst_xy = 0.0, worst_theta = 0.0;
@@ -225,8 +229,18 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       const Pose2 true_transform = fa.inverse() * fb;
       e["true_transform"] = pose_json(true_transform);
       const Pose2 est = r.accepted ? r.b_frame_in_a : r.estimate.a_locates_b.best.pose * r.b_pose_in_b.inverse();
-      const Pose2 d = between(true_transform, est);
-      e["frame_error"] = {std::hypot(d.x, d.y), std::abs(normalize_angle(d.theta)) * kRadToDeg};
+      // Error of the transform where it is applied: B's map placed in A's
+      // frame, compared at B's position. Three references for "true":
+      //  frame_error:   the frames as they were at each robot's start;
+      //  aligned_error: each map frame as its whole trajectory best fits the
+      //                 truth (the ATE alignment) — drift averaged out;
+      //  error:         as each robot's current pose says (local truth).
+      auto transform_error = [&](const Pose2& truth_transform) {
+        const Pose2 d = between(truth_transform * r.b_pose_in_b, est * r.b_pose_in_b);
+        return nlohmann::json::array({std::hypot(d.x, d.y), std::abs(normalize_angle(d.theta)) * kRadToDeg});
+      };
+      e["frame_error"] = transform_error(true_transform);
+      e["aligned_error"] = transform_error(alignments[ia].inverse() * alignments[ib]);
       // Where the transform was measured: the relative pose of the two robots.
       const Pose2 true_rel = between(truth_at(ta, r.a_log_time), truth_at(tb, r.b_log_time));
       const Pose2 est_rel = r.a_pose_in_a.inverse() * est * r.b_pose_in_b;

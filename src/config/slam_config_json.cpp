@@ -81,6 +81,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"verify_min_inliers", DSS_FIELD(double, verify_min_inliers)},
         {"verify_relative", DSS_FIELD(double, verify_relative)},
         {"verify_max_consecutive", DSS_FIELD(int, verify_max_consecutive)},
+        {"pause_after_still_scans", DSS_FIELD(int, pause_after_still_scans)},
         {"insert_min_travel", DSS_FIELD(double, insert_min_travel)},
         {"insert_min_rotation", DSS_FIELD(double, insert_min_rotation)}}},
   };

@@ -88,5 +88,56 @@ TEST(EvalCommand, InputProblemsPropagateAsInputError) {
   }
 }
 
+// `eval swarm`: two agents on a straight line; b's frame is a's shifted by
+// (10, 0) and the joint trajectory places b 5 cm off.
+fs::path write_swarm_run(const std::string& name) {
+  const fs::path dir = fresh_dir(name);
+  Trajectory a, b, b_joint;
+  for (int i = 0; i <= 4; ++i) a.push_back({100.0 + i, Pose2(i, 0, 0)});
+  for (int i = 8; i >= 3; --i) {
+    b.push_back({100.0 + i, Pose2(i - 10.0, 0, 0)});
+    b_joint.push_back({100.0 + i, Pose2(i + 0.05, 0, 0)});
+  }
+  for (const auto& [agent, trajectory] : {std::pair{"a", a}, std::pair{"b", b}}) {
+    fs::create_directories(dir / "agents" / agent);
+    write_tum(dir / "agents" / agent / "trajectory.tum", trajectory);
+  }
+  fs::create_directories(dir / "joint");
+  write_tum(dir / "joint" / "a.tum", a);
+  write_tum(dir / "joint" / "b.tum", b_joint);
+  // At log times 101 / 107 a is at 1 and b at −3 in its frame; the transform says +10.03: 6.03 for a true 6.
+  test::write_text(dir / "encounters.json", R"({"encounters": [{"time": 1, "agents": ["a", "b"],
+    "log_times": [101, 107], "poses": [[1, 0, 0], [-3, 0, 0]], "transform": [10.03, 0, 0], "accepted": true,
+    "reason": "", "match_ms": 20, "merge_ms": 5, "bytes": 4096}]})");
+  std::ofstream rel(dir / "run.relations");
+  for (int i = 0; i < 8; ++i) rel << (100 + i) << ' ' << (101 + i) << " 1 0 0 0 0 0\n";
+  rel << "101 107 6 0 0 0 0 0\n";  // a only → b only
+  rel << "100 108 8 0 0 0 0 0\n";  // a only → b only
+  return dir;
+}
+
+TEST(EvalCommand, SwarmPrintsTables) {
+  const fs::path dir = write_swarm_run("cli_swarm");
+  const std::string out = run_cli({"eval", "swarm", dir.string(), (dir / "run.relations").string()});
+  EXPECT_NE(out.find("per agent"), std::string::npos) << out;
+  EXPECT_NE(out.find("cross-agent"), std::string::npos) << out;
+  EXPECT_NE(out.find("0.0500 ± 0.0000"), std::string::npos) << out;  // both cross relations 5 cm off
+  EXPECT_NE(out.find("0.0300"), std::string::npos) << out;            // the encounter
+}
+
+TEST(EvalCommand, SwarmJson) {
+  const fs::path dir = write_swarm_run("cli_swarm_json");
+  const std::string out = run_cli({"eval", "swarm", dir.string(), (dir / "run.relations").string(), "--json"});
+  const auto j = nlohmann::json::parse(out);
+  EXPECT_EQ(j.at("agents").size(), 2u);
+  EXPECT_EQ(j.at("agents")[0].at("relations_covered").get<int>(), 4);  // 100-101 .. 103-104
+  EXPECT_EQ(j.at("agents")[1].at("relations_covered").get<int>(), 5);  // 103-104 .. 107-108
+  EXPECT_EQ(j.at("cross").at("relations").get<int>(), 2);
+  EXPECT_NEAR(j.at("cross").at("metrics").at("trans_mean").get<double>(), 0.05, 1e-9);
+  EXPECT_NEAR(j.at("encounters")[0].at("trans_error").get<double>(), 0.03, 1e-9);
+  EXPECT_EQ(j.at("encounters")[0].at("truth"), "relation");
+  EXPECT_THROW(run_cli({"eval", "swarm", (dir / "nope").string(), (dir / "run.relations").string()}), InputError);
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -22,6 +22,7 @@ void SlamConfig::validate() const {
   if (!unit(verify_min_known) || !unit(verify_min_inliers) || !unit(verify_relative))
     throw ConfigError("slam.verify_min_known, verify_min_inliers and verify_relative must be in [0, 1]");
   if (verify_max_consecutive < 0) throw ConfigError("slam.verify_max_consecutive must be >= 0");
+  if (pause_after_still_scans < 0) throw ConfigError("slam.pause_after_still_scans must be >= 0");
 }
 
 Slam::Slam(const SlamConfig& config)
@@ -125,7 +126,14 @@ SlamStep Slam::process(const LaserScan& scan) {
     match_and_verify(points, step);
   }
 
-  if (enough_points && (founding || step.matched)) {
+  if (scan.odometry) {
+    const bool same = last_odometry_ && scan.odometry->x == last_odometry_->x &&
+                      scan.odometry->y == last_odometry_->y && scan.odometry->theta == last_odometry_->theta;
+    still_scans_ = same ? still_scans_ + 1 : 0;
+    last_odometry_ = scan.odometry;
+  }
+  const bool standing_still = config_.pause_after_still_scans > 0 && still_scans_ >= config_.pause_after_still_scans;
+  if (enough_points && (founding || step.matched) && !standing_still) {
     bool insert = !last_insert_pose_;
     if (last_insert_pose_) {
       const Pose2 d = between(*last_insert_pose_, step.pose);

@@ -43,6 +43,11 @@ struct SlamConfig {
   double verify_min_inliers = 0.3;
   double verify_relative = 0.75;
   int verify_max_consecutive = 10;
+  // A robot whose odometry has not changed for this many scans is standing
+  // still: it keeps localizing but stops adding evidence, which would only
+  // pile up one viewpoint's noise until the map (and the pose) creep. Odometry
+  // that stalls while the robot moves (real logs do) freezes for fewer scans.
+  int pause_after_still_scans = 20;     // 0: never pause
   double insert_min_travel = 0.0;       // m
   double insert_min_rotation = 0.0;     // rad
 
@@ -121,6 +126,8 @@ class Slam {
   Pose2 anchor_pose_;
   bool odometry_moving_ = false;  // did the last fresh odometry increment move?
   std::optional<Pose2> last_insert_pose_;
+  std::optional<Pose2> last_odometry_;  // the previous scan's reading
+  int still_scans_ = 0;                 // consecutive scans with the same odometry reading
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
   std::size_t rejected_ = 0;
