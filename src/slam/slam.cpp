@@ -130,9 +130,12 @@ SlamStep Slam::process(const LaserScan& scan) {
     const bool same = last_odometry_ && scan.odometry->x == last_odometry_->x &&
                       scan.odometry->y == last_odometry_->y && scan.odometry->theta == last_odometry_->theta;
     still_scans_ = same ? still_scans_ + 1 : 0;
+    has_moved_ = has_moved_ || (last_odometry_ && !same);
     last_odometry_ = scan.odometry;
   }
-  const bool standing_still = config_.pause_after_still_scans > 0 && still_scans_ >= config_.pause_after_still_scans;
+  // Not before the robot first moves: a young map needs its first views.
+  const bool standing_still =
+      has_moved_ && config_.pause_after_still_scans > 0 && still_scans_ >= config_.pause_after_still_scans;
   if (enough_points && (founding || step.matched) && !standing_still) {
     bool insert = !last_insert_pose_;
     if (last_insert_pose_) {

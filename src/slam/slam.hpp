@@ -128,6 +128,7 @@ class Slam {
   std::optional<Pose2> last_insert_pose_;
   std::optional<Pose2> last_odometry_;  // the previous scan's reading
   int still_scans_ = 0;                 // consecutive scans with the same odometry reading
+  bool has_moved_ = false;              // has the odometry ever changed?
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
   std::size_t rejected_ = 0;

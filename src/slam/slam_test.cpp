@@ -158,5 +158,34 @@ TEST(Slam, FilterDropsRedundantScansYetEveryScanGetsAPose) {
   EXPECT_LT(std::hypot(e.x, e.y), 0.1);  // still tracks once moving
 }
 
+TEST(Slam, ARobotStandingStillStopsAddingEvidenceButKeepsLocalizing) {
+  const auto w = world();
+  SlamConfig config;
+  config.pause_after_still_scans = 5;
+  Slam slam(config);
+  // Drive 2 m, then stand still for 40 scans (odometry repeats exactly).
+  for (int k = 0; k < 20; ++k) {
+    LaserScan s = simulate(w, Pose2(0.1 * k, 0, 0), 0.1 * k);
+    s.odometry = Pose2(0.1 * k, 0, 0);
+    slam.process(s);
+  }
+  std::size_t inserted_when_stopping = 0;
+  for (int k = 20; k < 60; ++k) {
+    LaserScan s = simulate(w, Pose2(1.9, 0, 0), 0.1 * k);
+    s.odometry = Pose2(1.9, 0, 0);
+    const SlamStep step = slam.process(s);
+    EXPECT_TRUE(step.matched);
+    if (k == 25) inserted_when_stopping = slam.scans_inserted();
+  }
+  EXPECT_GT(inserted_when_stopping, 0u);
+  EXPECT_EQ(slam.scans_inserted(), inserted_when_stopping);  // nothing added while still
+  EXPECT_NEAR(slam.pose().x, 1.9, 0.05);
+  // Moving again resumes insertion.
+  LaserScan s = simulate(w, Pose2(2.0, 0, 0), 6.0);
+  s.odometry = Pose2(2.0, 0, 0);
+  slam.process(s);
+  EXPECT_EQ(slam.scans_inserted(), inserted_when_stopping + 1);
+}
+
 }  // namespace
 }  // namespace dsswarm
