@@ -120,52 +120,6 @@ void add_run_command(CLI::App& app) {
   cmd->callback([args] { run(*args); });
 }
 
-void add_demo_command(CLI::App& app) {
-  struct DemoArgs {
-    std::string out = "demo_out";
-    std::uint64_t world_seed = 1;
-    std::uint64_t run_seed = 7;
-    SlamOptions slam;
-  };
-  auto args = std::make_shared<DemoArgs>();
-  CLI::App* cmd = app.add_subcommand("demo", "Simulate a robot in a generated building, run SLAM, score it against ground truth");
-  cmd->add_option("--out", args->out, "Output directory")->capture_default_str();
-  cmd->add_option("--world-seed", args->world_seed, "Seed of the generated building")->capture_default_str();
-  cmd->add_option("--run-seed", args->run_seed, "Seed of the tour and sensor noise")->capture_default_str();
-  add_slam_options(*cmd, args->slam);
-  cmd->callback([args] {
-    const SlamConfig config = args->slam.resolve();
-    DemoConfig demo;
-    demo.world.seed = args->world_seed;
-    demo.seed = args->run_seed;
-    const auto t0 = std::chrono::steady_clock::now();
-    const SimulatedRun sim = simulate_demo(demo);
-    const double sim_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    fmt::print("simulated {} scans in {:.2f} s\n", sim.log.scans.size(), sim_seconds);
-
-    Slam slam(config);
-    const RunResult result = run_slam(sim.log, slam, "demo");
-    Trajectory truth;
-    for (const auto& [t, p] : sim.ground_truth) truth.push_back({t, p});
-    const AteResult ate = evaluate_ate(result.trajectory, truth);
-    Trajectory odometry;
-    for (const auto& s : sim.log.scans) odometry.push_back({s.timestamp, s.odometry.value_or(Pose2())});
-    const AteResult odom_ate = evaluate_ate(odometry, truth);
-
-    nlohmann::json stats = run_stats(result, slam, sim.log, sim_seconds);
-    stats["ate_rmse"] = ate.rmse;
-    stats["odometry_ate_rmse"] = odom_ate.rmse;
-    // Draw the ground truth in the map's frame (the ATE alignment maps
-    // estimate coordinates into ground-truth coordinates).
-    Trajectory truth_in_map = truth;
-    for (auto& p : truth_in_map) p.pose = ate.alignment.inverse() * p.pose;
-    write_run_outputs(args->out, result, slam, stats, &truth_in_map);
-    write_tum(std::filesystem::path(args->out) / "ground_truth.tum", truth);
-    print_summary(result, args->out);
-    fmt::print("ATE RMSE {:.3f} m (raw odometry {:.3f} m) over {} poses\n", ate.rmse, odom_ate.rmse, ate.matched);
-  });
-}
-
 void add_config_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("config", "Print the default SLAM configuration (JSON, for --config)");
   cmd->callback([] { fmt::print("{}\n", to_json(SlamConfig{}).dump(2)); });

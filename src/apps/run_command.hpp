@@ -4,8 +4,6 @@
 namespace dsswarm {
 // `dsswarm run LOG --out DIR`: single-robot SLAM on a recorded log.
 void add_run_command(CLI::App& app);
-// `dsswarm demo --out DIR`: simulate the built-in world, run SLAM, score it.
-void add_demo_command(CLI::App& app);
 // `dsswarm config`: print the default configuration as JSON.
 void add_config_command(CLI::App& app);
 }  // namespace dsswarm
