@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One command from a fresh Debian 12 machine to a SLAM result: installs what is
-# missing, builds (Release), and runs the built-in simulated demo.
-# Outputs land in out/demo (map.png, map.pgm/.yaml, trajectory.tum, stats.json).
+# missing, builds (Release), and runs the built-in simulated swarm demo.
+# Outputs land in out/demo (swarm.png, encounters.json, agents/*, joint/*, stats.json).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh

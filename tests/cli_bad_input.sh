@@ -59,5 +59,18 @@ fi
 for d in o1 o2 o3 o4 o5 o6 o7 o8 o9 o10 o11 o12 o13 o14 o15; do
   if [ -e "$tmp/$d" ] && [ -n "$(ls -A "$tmp/$d")" ]; then echo "FAIL: partial outputs left in $tmp/$d"; fails=$((fails + 1)); fi
 done
+# Swarm scenarios: a typo'd key, an unknown agent in an encounter, a missing log.
+printf 'agents:\n  - name: r1\n    log: corrupt.log\n    dirction: forward\n' > "$tmp/typo.yaml"
+printf 'agents:\n  - name: r1\n    log: small.log\nencounters:\n  - agents: [r1, r9]\n    time: 1\n' > "$tmp/unknown_agent.yaml"
+printf 'agents:\n  - name: r1\n    log: no_such.log\n' > "$tmp/missing_log.yaml"
+printf 'agents: [\n' > "$tmp/broken.yaml"
+expect_error swarm-typo "dirction" -- "$bin" swarm "$tmp/typo.yaml" --out "$tmp/s1"
+expect_error swarm-unknown-agent "r9" -- "$bin" swarm "$tmp/unknown_agent.yaml" --out "$tmp/s2"
+expect_error swarm-missing-log "no_such.log" -- "$bin" swarm "$tmp/missing_log.yaml" --out "$tmp/s3"
+expect_error swarm-broken-yaml "broken.yaml" -- "$bin" swarm "$tmp/broken.yaml" --out "$tmp/s4"
+expect_error demo-robots "robots" -- "$bin" demo --robots 0 --out "$tmp/s5"
+for d in s1 s2 s3 s4 s5; do
+  if [ -e "$tmp/$d" ] && [ -n "$(ls -A "$tmp/$d")" ]; then echo "FAIL: partial outputs left in $tmp/$d"; fails=$((fails + 1)); fi
+done
 echo "$fails failed"
 [ $fails -eq 0 ]
