@@ -4,7 +4,8 @@
 # experiment 2) with merging and without (--no-merge, the baseline), over a
 # few seeds, scored by `dsswarm swarm` itself (evaluation.json).
 # Usage: scripts/swarm_experiments.sh OUTDIR [SEEDS...]   (default seeds 1 2 3)
-# Runs two at a time; BIN picks the binary (default build/dsswarm).
+# Runs two at a time; BIN picks the binary (default build/dsswarm). Runs whose
+# evaluation.json exists are kept, so an interrupted run resumes.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 bin=${BIN:-$here/build/dsswarm}
@@ -19,6 +20,7 @@ done
 run_one() {
   local f=$1 n=$2 s=$3 mode=$4 dir="$out/$2-seed$3-$4" flag=""
   [ "$mode" = alone ] && flag=--no-merge
+  [ -s "$dir/evaluation.json" ] && { echo "$n seed $s $mode: already there"; return; }  # resumable
   "$bin" swarm "$f" --out "$dir" --seed "$s" $flag > "$dir.log" 2>&1 && echo "$n seed $s $mode done" ||
     echo "$n seed $s $mode FAILED (see $dir.log)"
 }
@@ -40,8 +42,10 @@ for n in names:
         m, a = load(n, s, "merge"), load(n, s, "alone")
         if not m or not a: continue
         for am, aa in zip(m["agents"], a["agents"]):
-            per.setdefault(am["name"], []).append((aa["relations"]["trans_mean"], am["relations"]["trans_mean"]))
-        if m["cross"]["metrics"]["used"]: cross.append(m["cross"]["metrics"]["trans_mean"])
+            if am["relations"] and aa["relations"]:
+                per.setdefault(am["name"], []).append((aa["relations"]["trans_mean"], am["relations"]["trans_mean"]))
+        cm = m["cross"].get("metrics") or {}
+        if cm.get("used"): cross.append(cm["trans_mean"])
         acc += m["encounter_summary"]["accepted"]; tot += m["encounter_summary"]["total"]
         enc += [(e["trans_error"], e["rot_error_deg"]) for e in m["encounters"] if e["accepted"] and e.get("trans_error") is not None]
     first = True
