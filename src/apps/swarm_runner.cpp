@@ -207,6 +207,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     e["transform"] = pose_json(r.accepted ? r.b_frame_in_a : r.estimate.a_locates_b.best.pose * r.b_pose_in_b.inverse());
     e["accepted"] = r.accepted;
     e["reason"] = r.reason;
+    e["confirmed_by"] = r.confirmed_by;
     e["match_ms"] = r.match_ms;
     e["merge_ms"] = r.merge_ms;
     e["bytes"] = r.bytes;
@@ -215,6 +216,13 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     e["placements"] = {pose_json(r.estimate.a_locates_b.best.pose), pose_json(r.estimate.b_locates_a.best.pose)};
     e["scores"] = {r.estimate.a_locates_b.best.score, r.estimate.b_locates_a.best.score};
     e["same_side"] = {r.estimate.a_locates_b.best.same_side_ratio, r.estimate.b_locates_a.best.same_side_ratio};
+    // How clearly each placement beat its best alternative (runner-up / best surroundings score).
+    auto runner_up = [](const RelativePoseResult& p) {
+      return p.runner_up && p.best.surroundings_score > 0.0 ? p.runner_up->surroundings_score / p.best.surroundings_score
+                                                            : 0.0;
+    };
+    e["runner_up_ratio"] = {runner_up(r.estimate.a_locates_b), runner_up(r.estimate.b_locates_a)};
+    e["known_fraction"] = {r.estimate.a_locates_b.best.known_fraction, r.estimate.b_locates_a.best.known_fraction};
     if (truth) {
       std::size_t ia = 0, ib = 0;
       for (std::size_t i = 0; i < s.agents(); ++i) {

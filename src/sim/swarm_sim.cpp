@@ -16,7 +16,7 @@ constexpr int kMaxRobots = 64;
 constexpr double kMinStartSeparation = 3.0;
 constexpr double kParkingSpacing = 1.0;      // m between neighbouring parking spots
 constexpr double kParkingClearance = 0.4;    // m from walls, as every tour leg keeps
-constexpr double kWaitAfterLastArrival = 10.0;  // s of scanning together once all are parked
+constexpr double kWaitAfterLastArrival = 30.0;  // s of scanning together once all are parked
 // Start spots in a room lie on the door axis between inside_door and
 // safe_spot (free of clutter by construction), at least this far along it.
 constexpr double kStartMinAlongLane = 0.3;

@@ -32,7 +32,7 @@ struct RelativePoseConfig {
   double coarse_step_xy = 0.15;      // m, lattice of the exhaustive search
   double coarse_step_theta = 0.0524; // rad (3°)
   int coarse_points = 90;            // scan points used by the exhaustive search
-  int candidates = 12;               // coarse modes refined
+  int candidates = 32;               // coarse modes refined
   double surroundings_radius = 8.0;  // m around the foreign robot (step 3)
   int surroundings_points = 2000;    // at most this many obstacle cells
   // Two placements are distinct modes when this far apart (either way).

@@ -12,6 +12,7 @@ void SwarmConfig::validate() const {
   slam.validate();
   encounter.validate();
   if (!(remerge_interval >= 0.0)) throw ConfigError("swarm.remerge_interval must be >= 0 s");
+  if (!(confirm_xy > 0.0) || !(confirm_theta > 0.0)) throw ConfigError("swarm.confirm_xy and confirm_theta must be > 0");
 }
 
 SwarmSession::SwarmSession(std::vector<AgentStream> streams, std::vector<EncounterEvent> events,
@@ -39,6 +40,7 @@ SwarmSession::SwarmSession(std::vector<AgentStream> streams, std::vector<Encount
                    [](const EncounterEvent& x, const EncounterEvent& y) { return x.time < y.time; });
   tracks_.resize(streams_.size());
   last_merge_.assign(streams_.size(), std::vector<double>(streams_.size(), -std::numeric_limits<double>::infinity()));
+  unconfirmed_.assign(streams_.size(), std::vector<std::vector<Pose2>>(streams_.size()));
 }
 
 void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& progress) {
@@ -102,6 +104,27 @@ void SwarmSession::encounter(const EncounterEvent& e) {
   r.match_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   r.accepted = r.estimate.accepted;
   r.reason = r.estimate.reason;
+  if (r.accepted && config_.confirm) {
+    const Pose2 t = r.estimate.b_frame_in_a;
+    auto agrees = [&](const Pose2& other) {
+      const Pose2 d = between(other * view_b.pose, t * view_b.pose);
+      return std::hypot(d.x, d.y) <= config_.confirm_xy && std::abs(normalize_angle(d.theta)) <= config_.confirm_theta;
+    };
+    std::vector<Pose2>& pending = unconfirmed_[std::min(e.a, e.b)][std::max(e.a, e.b)];
+    // Stored as b's frame in a's for the pair's lower index first.
+    auto stored = [&](const Pose2& p) { return e.a < e.b ? p : p.inverse(); };
+    if (const MapLayer* known = a.knowledge().find(b.name()); known && agrees(known->origin_in_holder)) {
+      r.confirmed_by = "known transform";
+    } else {
+      for (const Pose2& p : pending)
+        if (agrees(stored(p))) r.confirmed_by = "earlier encounter";
+    }
+    if (r.confirmed_by.empty()) {
+      pending.push_back(stored(t));
+      r.accepted = false;
+      r.reason = "verified; waiting for a second encounter to confirm it";
+    }
+  }
   if (r.accepted) {
     r.b_frame_in_a = r.estimate.b_frame_in_a;
     a.merge(from_b, r.b_frame_in_a);

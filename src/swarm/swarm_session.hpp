@@ -37,6 +37,7 @@ struct EncounterRecord {
   std::string a, b;
   bool accepted = false;
   std::string reason;
+  std::string confirmed_by;   // accepted: "earlier encounter" or "known transform" ("" when not confirming)
   Pose2 b_frame_in_a;         // estimate (meaningful when accepted)
   Pose2 b_pose_in_b, a_pose_in_a;  // the robots' own poses at the encounter
   double a_log_time = 0.0, b_log_time = 0.0;  // timestamps of the scans exchanged
@@ -56,10 +57,19 @@ struct SwarmConfig {
   EncounterConfig encounter;
   // Robots that met with an accepted merge skip further encounters for this
   // long (their maps have not changed much); rejected ones retry at once.
-  double remerge_interval = 20.0;  // s of session clock
+  double remerge_interval = 10.0;  // s of session clock
   // false: encounters are ignored and every robot maps alone (the baseline
   // merging is measured against).
   bool merge = true;
+  // A verified transform is merged on only once a second, independent
+  // estimate of the same transform agrees with it: an earlier encounter of
+  // the pair, or the transform already known (directly or through a third
+  // robot). Two robots facing each other in a symmetric corridor can agree on
+  // a wrong placement, both ways, at one moment; they almost never do twice,
+  // from other places. Agreement is measured at robot B's position.
+  bool confirm = true;
+  double confirm_xy = 0.25;      // m
+  double confirm_theta = 0.035;  // rad (2°)
 
   void validate() const;
 };
@@ -94,6 +104,8 @@ class SwarmSession {
   std::vector<AgentTrack> tracks_;
   std::vector<EncounterRecord> records_;
   std::vector<std::vector<double>> last_merge_;  // [a][b] session time of the last accepted merge
+  // [a][b] (a < b): verified transforms (b's frame in a's) awaiting confirmation.
+  std::vector<std::vector<std::vector<Pose2>>> unconfirmed_;
   std::size_t skipped_ = 0;
 };
 

@@ -40,11 +40,15 @@ std::vector<AgentStream> two_robots(const World& world) {
 
 TEST(SwarmSession, RobotsThatMeetMergeAndKnowEachOther) {
   const World world = test::l_shaped_office();
-  SwarmSession session(two_robots(world), {{2.95, 0, 1}}, SwarmConfig{});
+  // Two proximity events: the first verified estimate waits for the second to confirm it.
+  SwarmSession session(two_robots(world), {{2.45, 0, 1}, {2.95, 0, 1}}, SwarmConfig{});
   session.run();
-  ASSERT_EQ(session.encounters().size(), 1u);
-  const EncounterRecord& r = session.encounters().front();
+  ASSERT_EQ(session.encounters().size(), 2u);
+  EXPECT_FALSE(session.encounters().front().accepted) << session.encounters().front().reason;
+  EXPECT_NE(session.encounters().front().reason.find("confirm"), std::string::npos);
+  const EncounterRecord& r = session.encounters().back();
   ASSERT_TRUE(r.accepted) << r.reason;
+  EXPECT_EQ(r.confirmed_by, "earlier encounter");
   // b's frame in a's frame, by construction of the two drives.
   const Pose2 truth = Pose2{1.5, 1.5, 0.4}.inverse() * Pose2{8.5, 2.0, -2.5};
   EXPECT_NEAR(r.b_frame_in_a.x, truth.x, 0.05);
@@ -58,6 +62,17 @@ TEST(SwarmSession, RobotsThatMeetMergeAndKnowEachOther) {
               obstacle_cells(session.agent(i).slam().own_map().finest()) + 50);
   EXPECT_EQ(session.track(0).steps.size(), 30u);
   EXPECT_EQ(session.track(1).steps.size(), 30u);
+}
+
+TEST(SwarmSession, WithoutConfirmationOneVerifiedEncounterMerges) {
+  const World world = test::l_shaped_office();
+  SwarmConfig config;
+  config.confirm = false;
+  SwarmSession session(two_robots(world), {{2.95, 0, 1}}, config);
+  session.run();
+  ASSERT_EQ(session.encounters().size(), 1u);
+  EXPECT_TRUE(session.encounters().front().accepted) << session.encounters().front().reason;
+  EXPECT_NE(session.agent(0).knowledge().find("b"), nullptr);
 }
 
 TEST(SwarmSession, WithoutMergingEveryRobotMapsAlone) {
