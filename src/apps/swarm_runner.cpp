@@ -264,7 +264,10 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       if (r.accepted) {
         worst_xy = std::max(worst_xy, exy);
         worst_theta = std::max(worst_theta, eth);
-        if (exy > 0.3 || eth > 3.0) ++wrong;
+        // Wrong under every reference: a robot whose own SLAM slipped makes
+        // one reference disagree even with a well-placed map, never both.
+        const auto& al = e["aligned_error"];
+        if ((exy > 0.3 || eth > 3.0) && (al[0].get<double>() > 0.3 || al[1].get<double>() > 3.0)) ++wrong;
       }
     }
     if (r.accepted) {

@@ -16,7 +16,6 @@ constexpr int kMaxRobots = 64;
 constexpr double kMinStartSeparation = 3.0;
 constexpr double kParkingSpacing = 1.0;      // m between neighbouring parking spots
 constexpr double kParkingClearance = 0.4;    // m from walls, as every tour leg keeps
-constexpr double kWaitAfterLastArrival = 30.0;  // s of scanning together once all are parked
 // Start spots in a room lie on the door axis between inside_door and
 // safe_spot (free of clutter by construction), at least this far along it.
 constexpr double kStartMinAlongLane = 0.3;
@@ -344,9 +343,9 @@ WorldConfig swarm_world_config(int robots) {
   WorldConfig config;
   constexpr double kRoomWidth = 7.5, kRoomDepth = 9.0;  // as in the default building
   if (robots <= 3) {
-    // The default building with one more pair of rooms: a few minutes per robot.
-    config.rooms_x = 5;
-    config.width = config.rooms_x * kRoomWidth;
+    // The default building. Its 30 m corridors stay within the lidar's range
+    // (30 m): in a longer featureless corridor a scan cannot tell how far the
+    // robot has driven, and single-robot SLAM leans on odometry alone there.
   } else {
     // About 2 rooms per robot, a corridor per 4 robots; rooms as in the
     // default building. 3 m corridors leave a 3x3 grid of parking spots 1 m
@@ -387,7 +386,7 @@ SimulatedSwarm simulate_swarm(const SwarmSimConfig& config) {
     longest = std::max(longest, paths.back().poses.size());
   }
   // One clock for all: everyone scans until the last arrival plus a wait.
-  const std::size_t steps = longest + static_cast<std::size_t>(std::ceil(kWaitAfterLastArrival / dt));
+  const std::size_t steps = longest + static_cast<std::size_t>(std::ceil(kSwarmWaitAfterLastArrival / dt));
 
   swarm.rendezvous_area = {swarm.parking_spots.front(), swarm.parking_spots.front()};
   for (const Eigen::Vector2d& p : swarm.parking_spots)

@@ -25,6 +25,11 @@ namespace dsswarm {
 // Throws ConfigError when robots is outside [1, 64].
 WorldConfig swarm_world_config(int robots);
 
+// Seconds the robots keep scanning together once the last one has parked:
+// long enough for a proximity sensor to raise two events (a merge is
+// confirmed by a second encounter) before the run ends.
+inline constexpr double kSwarmWaitAfterLastArrival = 30.0;
+
 struct SwarmSimConfig {
   WorldConfig world = swarm_world_config(3);  // for other robot counts use swarm_world_config(robots)
   LidarConfig lidar;

@@ -74,10 +74,10 @@ void expect_well_formed(const SwarmSimConfig& config, const SimulatedSwarm& swar
     EXPECT_NEAR(odometry_at_arrival.y, odometry_at_end.y, 1e-9);
     EXPECT_NEAR(odometry_at_arrival.theta, odometry_at_end.theta, 1e-9);
   }
-  // The last robot arrives, then ~10 s of scanning together.
+  // The last robot arrives, then the robots scan together for a while.
   double last_arrival = 0;
   for (double t : swarm.arrival_times) last_arrival = std::max(last_arrival, t);
-  EXPECT_NEAR(swarm.runs.front().ground_truth.back().first - last_arrival, 10.0, 0.2);
+  EXPECT_NEAR(swarm.runs.front().ground_truth.back().first - last_arrival, kSwarmWaitAfterLastArrival, 0.2);
 
   // Starts: pairwise >= 3 m apart, headings not all the same.
   std::set<double> headings;
