@@ -2,10 +2,11 @@
 # Runs `dsswarm run` on the real logs over several seeds and scores each run
 # with the relation metric. Usage: scripts/eval_datasets.sh OUTDIR [SEEDS...] [-- extra run flags]
 # Prints one line per run and a summary per dataset; runs two at a time.
+# BIN picks the dsswarm binary (default build/dsswarm).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 data=${DSSWARM_DATA:-$here/../shared/data}
-bin=$here/build/dsswarm
+bin=${BIN:-$here/build/dsswarm}
 out=$1; shift
 seeds=(); extra=()
 while [ $# -gt 0 ]; do

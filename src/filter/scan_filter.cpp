@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -38,6 +39,10 @@ void ScanFilterConfig::validate() const {
   // +inf is accepted: "no limit".
   require(max_translation > 0.0, "max_translation", "> 0 (metres)", max_translation);
   require(max_rotation > 0.0, "max_rotation", "> 0 (radians)", max_rotation);
+  require(doubt_ratio >= 0.0, "doubt_ratio", ">= 0 (+inf disables)", doubt_ratio);
+  require(doubt_min_travel >= 0.0 && std::isfinite(doubt_min_travel), "doubt_min_travel", "finite and >= 0 (metres)",
+          doubt_min_travel);
+  require(doubt_cone > 0.0 && doubt_cone <= std::numbers::pi, "doubt_cone", "in (0, pi] (radians)", doubt_cone);
 }
 
 ScanFilter::ScanFilter(const ScanFilterConfig& config) : config_(config) { config_.validate(); }
@@ -70,6 +75,28 @@ bool ScanFilter::moved_since_last_kept(const LaserScan& scan) const {
   return std::hypot(motion.x, motion.y) > config_.max_translation || std::abs(motion.theta) > config_.max_rotation;
 }
 
+bool ScanFilter::odometry_contradicted(const LaserScan& scan, const std::vector<double>& histogram) const {
+  if (config_.binning != HistogramBinning::sector || !std::isfinite(config_.doubt_ratio)) return false;
+  if (!scan.odometry || !last_kept_odometry_ || window_.empty()) return false;
+  const std::vector<double>& last = window_.back();  // the last kept scan's histogram
+  const double forward = between(*last_kept_odometry_, *scan.odometry).x;
+  if (std::abs(forward) < config_.doubt_min_travel || last.size() != histogram.size()) return false;
+  // Column c covers beams [c n / B, (c + 1) n / B) (scan_histogram); its
+  // bearing in the robot frame is that of its middle beam.
+  const std::size_t n = scan.ranges.size(), columns = histogram.size();
+  if (n == 0 || columns > n) return false;  // no beams: no column has a bearing
+  std::vector<double> ahead;
+  for (std::size_t c = 0; c < columns; ++c) {
+    const double middle = 0.5 * static_cast<double>(c * n / columns + (c + 1) * n / columns - 1);
+    const double bearing = normalize_angle(scan.angle_min + middle * scan.angle_increment + scan.laser_offset.theta);
+    if (std::abs(bearing) <= config_.doubt_cone) ahead.push_back(histogram[c] - last[c]);
+  }
+  if (ahead.empty()) return false;
+  // Positive: the view ahead receded while odometry claims approach (or the reverse).
+  const double against = (forward > 0.0 ? 1.0 : -1.0) * median_in_place(ahead);
+  return against > config_.doubt_ratio * std::abs(forward);
+}
+
 ScanFilter::Decision ScanFilter::decide(const LaserScan& scan) {
   HistogramSpec spec{config_.columns, config_.statistic, config_.binning};
   if (spec.columns == 0) spec.columns = default_column_count(scan.ranges.size());
@@ -98,6 +125,8 @@ ScanFilter::Decision ScanFilter::decide(const LaserScan& scan) {
     d.reason = "dissimilar";
   } else if (moved_since_last_kept(scan)) {
     d.reason = "moved";
+  } else if (odometry_contradicted(scan, histogram)) {
+    d.reason = "odometry_doubt";
   } else if (consecutive_drops_ >= config_.max_consecutive_drops) {
     d.reason = "drop_cap";
   } else {

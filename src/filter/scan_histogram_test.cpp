@@ -27,14 +27,16 @@ HistogramSpec sectors(int columns, HistogramStatistic statistic = HistogramStati
   return {columns, statistic, HistogramBinning::sector};
 }
 
-TEST(DefaultColumnCount, ThirtyForAThousandBeamsScaledWithinFifteenToThirty) {
+TEST(DefaultColumnCount, ThirtyForAThousandBeamsScaledWithinTenToThirty) {
   EXPECT_EQ(default_column_count(1000), 30);
   EXPECT_EQ(default_column_count(1040), 30);
   EXPECT_EQ(default_column_count(700), 21);
   EXPECT_EQ(default_column_count(500), 15);
-  EXPECT_EQ(default_column_count(361), 15);
-  EXPECT_EQ(default_column_count(180), 15);
-  EXPECT_EQ(default_column_count(0), 15);
+  EXPECT_EQ(default_column_count(400), 12);
+  EXPECT_EQ(default_column_count(361), 11);  // mit-csail
+  EXPECT_EQ(default_column_count(360), 11);  // fr079
+  EXPECT_EQ(default_column_count(180), 10);  // intel: 5.4 scaled, raised to the floor
+  EXPECT_EQ(default_column_count(0), 10);
   EXPECT_EQ(default_column_count(5000), 30);
 }
 
