@@ -12,10 +12,8 @@
 #include "apps/slam_runner.hpp"
 #include "common/errors.hpp"
 #include "config/slam_config_json.hpp"
-#include "eval/ate.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/maps/dsmap.hpp"
-#include "sim/scenario.hpp"
 
 namespace dsswarm {
 namespace {

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <unordered_set>
 
 #include "apps/slam_runner.hpp"
@@ -18,7 +19,7 @@ namespace dsswarm {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kRadToDeg = 180.0 / M_PI;
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 nlohmann::json pose_json(const Pose2& p) { return nlohmann::json::array({p.x, p.y, p.theta}); }
 

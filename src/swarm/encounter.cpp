@@ -1,6 +1,7 @@
 #include "swarm/encounter.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 
 #include "common/errors.hpp"
@@ -35,7 +36,7 @@ std::string placement_problem(const RelativePoseResult& r, const EncounterConfig
   if (r.runner_up && r.runner_up->surroundings_score > config.max_runner_up_ratio * best.surroundings_score) {
     const Pose2 d = between(best.pose, r.runner_up->pose);
     return fmt::format("{}: ambiguous: another placement of {} {:.2f} m / {:.0f}° away scores {:.2f} of the best",
-                       who, whom, std::hypot(d.x, d.y), std::abs(d.theta) * 180.0 / M_PI,
+                       who, whom, std::hypot(d.x, d.y), std::abs(d.theta) * 180.0 / std::numbers::pi,
                        r.runner_up->surroundings_score / std::max(best.surroundings_score, 1e-9));
   }
   return "";
@@ -67,7 +68,7 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
   if (problem.empty()) problem = placement_problem(e.b_locates_a, config, "B", "A");
   if (problem.empty() && (e.disagreement_xy > config.agree_xy || e.disagreement_theta > config.agree_theta))
     problem = fmt::format("the two directions disagree by {:.2f} m / {:.1f}°", e.disagreement_xy,
-                          e.disagreement_theta * 180.0 / M_PI);
+                          e.disagreement_theta * 180.0 / std::numbers::pi);
   if (!problem.empty()) {
     e.reason = problem;
     return e;
