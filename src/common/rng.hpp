@@ -39,4 +39,14 @@ class Rng {
   bool has_spare_ = false;
 };
 
+// Independent random streams from one user seed (SplitMix64 finaliser): e.g.
+// a simulated robot's odometry and lidar noise each get their own, so changing
+// the lidar settings leaves the odometry noise unchanged.
+inline std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream) {
+  std::uint64_t z = seed + stream * 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
 }  // namespace dsswarm

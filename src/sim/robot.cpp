@@ -19,15 +19,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw ConfigError("robot config: " + message);
 }
 
-// Independent random streams from one user seed (SplitMix64 finaliser), so
-// that e.g. changing the lidar settings leaves the odometry noise unchanged.
-std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream) {
-  std::uint64_t z = seed + stream * 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 // Exact motion along the arc of constant speed v and turn rate w for dt.
 Pose2 integrate_arc(const Pose2& pose, double v, double w, double dt) {
   const double dtheta = w * dt;

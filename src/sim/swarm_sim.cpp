@@ -27,15 +27,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw ConfigError("swarm config: " + message);
 }
 
-// Independent random streams from one seed (SplitMix64 finaliser), as in the
-// single-robot simulation: planning, and each robot's odometry and lidar.
-std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream) {
-  std::uint64_t z = seed + stream * 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 std::size_t random_index(Rng& rng, std::size_t n) {
   return std::min(n - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)));
 }
