@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "apps/slam_runner.hpp"
+#include "common/errors.hpp"
 #include "config/slam_config_json.hpp"
 #include "eval/ate.hpp"
 #include "io/atomic_file.hpp"
@@ -128,6 +129,9 @@ double run_swarm_session(SwarmSession& session, const std::string& label) {
 
 nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const SwarmSession& s, double wall_seconds,
                                    const SwarmTruth* truth) {
+  if (truth && truth->world_poses.size() != s.agents())
+    throw ConfigError("swarm outputs: ground truth for " + std::to_string(truth->world_poses.size()) +
+                      " agents, but the session has " + std::to_string(s.agents()));
   std::filesystem::create_directories(dir);
   std::vector<std::optional<Pose2>> frames;
   for (std::size_t i = 0; i < s.agents(); ++i) frames.push_back(frame_in_reference(s, i));
@@ -136,7 +140,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   nlohmann::json agents = nlohmann::json::array();
   std::size_t total_scans = 0;
   std::unordered_set<std::int64_t> explored;  // by the whole swarm (simulation only)
-  std::vector<std::unordered_set<std::int64_t>> known;
+  std::vector<std::unordered_set<std::int64_t>> known(s.agents());  // per agent, by its working map
   for (std::size_t i = 0; i < s.agents(); ++i) {
     const SwarmAgent& a = s.agent(i);
     const std::filesystem::path adir = dir / "agents" / a.name();
@@ -170,14 +174,14 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
                             {"origin_in_holder", pose_json(l.origin_in_holder)}});
     j["map_bytes"] = a.slam().map().memory_bytes() + (a.knowledge().size() > 0 ? a.slam().own_map().memory_bytes() : 0);
     j["in_joint_frame"] = frames[i].has_value();
-    if (truth) {
+    if (truth && !own.empty() && !truth->world_poses[i].empty()) {
       const Trajectory& t = truth->world_poses[i];
       write_tum(adir / "ground_truth.tum", t);
       j["ate_rmse"] = evaluate_ate(own, t).rmse;
       const Pose2 frame_in_world = truth_at(t, own.front().timestamp) * own.front().pose.inverse();
       auto own_cells = known_world_cells(a.slam().own_map().finest(), frame_in_world);
       explored.insert(own_cells.begin(), own_cells.end());
-      known.push_back(known_world_cells(a.slam().map().finest(), frame_in_world));
+      known[i] = known_world_cells(a.slam().map().finest(), frame_in_world);
     }
     total_scans += own.size();
     agents.push_back(std::move(j));
