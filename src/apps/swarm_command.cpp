@@ -50,7 +50,7 @@ void run_demo(const DemoArgs& a) {
   ProximityConfig proximity;
   proximity.range = a.range;
   const std::vector<ProximityEvent> near = proximity_events(swarm.world, swarm, proximity);
-  fmt::print("simulated {} robots × {} scans, {} proximity events, in {:.2f} s\n", a.robots,
+  fmt::print("simulated {} robot(s) × {} scans, {} proximity events, in {:.2f} s\n", a.robots,
              swarm.runs.front().log.scans.size(), near.size(),
              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 
