@@ -56,7 +56,7 @@ std::unordered_set<std::int64_t> known_world_cells(const DsGrid& grid, const Pos
   grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
       if (cells[i].occupied + cells[i].free < kKnown) continue;
-      const CellIndex c{origin.x + (i & (DsGrid::kTileSize - 1)), origin.y + (i >> DsGrid::kTileBits)};
+      const CellIndex c = DsGrid::tile_cell(origin, i);
       const Eigen::Vector2d w = frame_in_world * grid.cell_center(c);
       const auto x = static_cast<std::int64_t>(std::floor(w.x() / kCell));
       const auto y = static_cast<std::int64_t>(std::floor(w.y() / kCell));

@@ -104,7 +104,8 @@ GridRaster DsGrid::to_raster(int margin) const {
     for (int i = 0; i < kTileCells; ++i) {
       const DsMass& m = t->cells[i];
       if (m.occupied == 0.0f && m.free == 0.0f) continue;
-      const std::int32_t x = t->origin.x + (i & (kTileSize - 1)), y = t->origin.y + (i >> kTileBits);
+      const CellIndex c = tile_cell(t->origin, i);
+      const std::int32_t x = c.x, y = c.y;
       lo = {std::min(lo.x, x), std::min(lo.y, y)};
       hi = {std::max(hi.x, x), std::max(hi.y, y)};
     }

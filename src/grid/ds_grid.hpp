@@ -93,6 +93,12 @@ class DsGrid {
   // Dense copy of the region that holds any evidence (plus `margin` cells).
   GridRaster to_raster(int margin = 2) const;
 
+  // The cell at position `i` of the cells array for_each_tile hands out, for
+  // the tile whose lower-left cell is `origin`.
+  static CellIndex tile_cell(CellIndex origin, int i) {
+    return {origin.x + (i & (kTileSize - 1)), origin.y + (i >> kTileBits)};
+  }
+
   // Visits every allocated tile: f(tile_origin_cell, const DsMass* cells[kTileCells]).
   template <typename F>
   void for_each_tile(F&& f) const {

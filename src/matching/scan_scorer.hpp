@@ -56,26 +56,38 @@ namespace dsswarm {
 // believed more occupied than free. A correct match keeps most points on
 // walls; a wrong one puts them in space the map has seen to be free. Points
 // in unexplored space count for neither, so entering a new room is no failure.
+// Whether cell `c` or one of its 8 neighbours holds an obstacle: occupied mass
+// at least 0.15 and more than its free mass. The neighbourhood absorbs a
+// cell's worth of misplacement.
+inline bool near_obstacle(const DsGrid& grid, CellIndex c) {
+  constexpr float kObstacle = 0.15f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const DsMass m = grid.at({c.x + dx, c.y + dy});
+      if (m.occupied >= kObstacle && m.occupied > m.free) return true;
+    }
+  return false;
+}
+
 struct MatchQuality {
   double known_fraction = 0.0;  // weight share of points that land on known cells
   double inlier_ratio = 1.0;    // of those, the weight share on or next to an obstacle
 };
 
 inline MatchQuality match_quality(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
-  constexpr float kKnown = 0.1f;      // evidence mass that makes a cell "seen"
-  constexpr float kObstacle = 0.15f;  // occupied mass (and more than free) that makes it an obstacle
+  constexpr float kKnown = 0.1f;  // evidence mass that makes a cell "seen"
   double total = 0.0, known = 0.0, inliers = 0.0;
   for (const ScanPoint& p : points) {
     const CellIndex c = grid.cell_of(pose * Eigen::Vector2d(p.x, p.y));
-    bool seen = false, obstacle = false;
-    for (int dy = -1; dy <= 1 && !obstacle; ++dy)
-      for (int dx = -1; dx <= 1 && !obstacle; ++dx) {
+    const bool obstacle = near_obstacle(grid, c);
+    bool seen = obstacle;
+    for (int dy = -1; dy <= 1 && !seen; ++dy)
+      for (int dx = -1; dx <= 1 && !seen; ++dx) {
         const DsMass m = grid.at({c.x + dx, c.y + dy});
-        seen = seen || (m.occupied + m.free) >= kKnown;
-        obstacle = m.occupied >= kObstacle && m.occupied > m.free;
+        seen = (m.occupied + m.free) >= kKnown;
       }
     total += p.weight;
-    if (seen || obstacle) known += p.weight;
+    if (seen) known += p.weight;
     if (obstacle) inliers += p.weight;
   }
   MatchQuality q;

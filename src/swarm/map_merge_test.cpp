@@ -13,7 +13,7 @@ bool same_cells(const DsGrid& a, const DsGrid& b) {
   bool same = a.tiles_allocated() == b.tiles_allocated();
   a.for_each_tile([&](CellIndex origin, const DsMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells && same; ++i) {
-      const CellIndex c{origin.x + (i & (DsGrid::kTileSize - 1)), origin.y + (i >> DsGrid::kTileBits)};
+      const CellIndex c = DsGrid::tile_cell(origin, i);
       same = b.at(c).occupied == cells[i].occupied && b.at(c).free == cells[i].free;
     }
   });

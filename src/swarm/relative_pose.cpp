@@ -100,21 +100,13 @@ std::vector<Pose2> distinct_best(std::vector<Coarse> all, int count, const Relat
 }  // namespace
 
 double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
-  constexpr float kObstacle = 0.15f;   // as in match_quality
   constexpr float kSeenFree = 0.08f;   // two beams' worth of free evidence
   constexpr double kApproach = 0.15;   // m before the hit: beyond the surface's own blur
   const Eigen::Vector2d origin = pose.translation();
   double inliers = 0.0, same_side = 0.0;
   for (const ScanPoint& p : points) {
     const Eigen::Vector2d hit = pose * Eigen::Vector2d(p.x, p.y);
-    const CellIndex c = grid.cell_of(hit);
-    bool obstacle = false;
-    for (int dy = -1; dy <= 1 && !obstacle; ++dy)
-      for (int dx = -1; dx <= 1 && !obstacle; ++dx) {
-        const DsMass m = grid.at({c.x + dx, c.y + dy});
-        obstacle = m.occupied >= kObstacle && m.occupied > m.free;
-      }
-    if (!obstacle) continue;
+    if (!near_obstacle(grid, grid.cell_of(hit))) continue;
     inliers += p.weight;
     const Eigen::Vector2d to_hit = hit - origin;
     const double range = to_hit.norm();
@@ -138,7 +130,7 @@ std::vector<ScanPoint> surroundings_points(const MultiResMap& map, const Pose2& 
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
       const DsMass& m = cells[i];
       if (m.occupied < 0.5f || m.occupied <= m.free) continue;
-      const Eigen::Vector2d w = grid.cell_center({origin.x + (i & (DsGrid::kTileSize - 1)), origin.y + (i >> DsGrid::kTileBits)});
+      const Eigen::Vector2d w = grid.cell_center(DsGrid::tile_cell(origin, i));
       if ((w - robot_pose.translation()).squaredNorm() > r2) continue;
       const Eigen::Vector2d b = to_base * w;
       all.push_back({static_cast<float>(b.x()), static_cast<float>(b.y()), 1.0f});
