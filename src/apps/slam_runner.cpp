@@ -78,8 +78,7 @@ void write_run_outputs(const std::filesystem::path& dir, const RunResult& result
   write_map_server(dir / "map.yaml", raster);
 
   if (raster.width > 0) {
-    const int scale = std::max(1, std::min(4, 1600 / std::max(raster.width, raster.height)));
-    Image picture = render_map(raster, scale);
+    Image picture = render_map(raster, fitting_scale(raster));
     auto path_of = [](const Trajectory& t) {
       std::vector<Eigen::Vector2d> pts;
       pts.reserve(t.size());

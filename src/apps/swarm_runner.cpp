@@ -66,18 +66,18 @@ std::unordered_set<std::int64_t> known_world_cells(const DsGrid& grid, const Pos
   return out;
 }
 
-void write_map_files(const std::filesystem::path& dir, const std::string& stem, const MultiResMap& map) {
-  const GridRaster raster = map.finest().to_raster();
-  if (raster.width == 0) return;
-  write_map_server(dir / (stem + ".yaml"), raster);
+// Writes STEM.{yaml,pgm} (nothing for an empty map) and returns the raster.
+GridRaster write_map_files(const std::filesystem::path& dir, const std::string& stem, const MultiResMap& map) {
+  GridRaster raster = map.finest().to_raster();
+  if (raster.width > 0) write_map_server(dir / (stem + ".yaml"), raster);
+  return raster;
 }
 
-void draw_swarm_picture(const std::filesystem::path& path, const SwarmSession& s,
+// `raster`: the first agent's merged map.
+void draw_swarm_picture(const std::filesystem::path& path, const SwarmSession& s, const GridRaster& raster,
                         const std::vector<std::optional<Pose2>>& frames) {
-  const GridRaster raster = s.agent(0).slam().map().finest().to_raster();
   if (raster.width == 0) return;
-  const int scale = std::max(1, std::min(4, 1600 / std::max(raster.width, raster.height)));
-  Image picture = render_map(raster, scale);
+  Image picture = render_map(raster, fitting_scale(raster));
   for (std::size_t i = 0; i < s.agents(); ++i) {
     if (!frames[i]) continue;
     std::vector<Eigen::Vector2d> pts;
@@ -140,7 +140,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   nlohmann::json agents = nlohmann::json::array();
   std::size_t total_scans = 0;
   std::unordered_set<std::int64_t> explored;  // by the whole swarm (simulation only)
-  std::vector<std::unordered_set<std::int64_t>> known(s.agents());  // per agent, by its working map
+  std::vector<std::unordered_set<std::int64_t>> known(s.agents());
+  GridRaster first_merged;  // the first agent's merged map: swarm.png's background  // per agent, by its working map
   for (std::size_t i = 0; i < s.agents(); ++i) {
     const SwarmAgent& a = s.agent(i);
     const std::filesystem::path adir = dir / "agents" / a.name();
@@ -148,16 +149,15 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     const Trajectory own = own_trajectory(s.track(i));
     write_tum(adir / "trajectory.tum", own);
     write_map_files(adir, "map", a.slam().own_map());
-    write_map_files(adir, "merged_map", a.slam().map());
-    const GridRaster merged = a.slam().map().finest().to_raster();
+    GridRaster merged = write_map_files(adir, "merged_map", a.slam().map());
     if (merged.width > 0) {
-      const int scale = std::max(1, std::min(4, 1600 / std::max(merged.width, merged.height)));
-      Image picture = render_map(merged, scale);
+      Image picture = render_map(merged, fitting_scale(merged));
       std::vector<Eigen::Vector2d> pts;
       for (const auto& p : own) pts.push_back(p.pose.translation());
       draw_polyline(picture, merged, pts, agent_colour(static_cast<int>(i)), 1);
       write_png(adir / "merged_map.png", picture);
     }
+    if (i == 0) first_merged = std::move(merged);
     if (frames[i]) {
       Trajectory joint = own;
       for (auto& p : joint) p.pose = *frames[i] * p.pose;
@@ -284,7 +284,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     list.push_back(std::move(e));
   }
   write_file_atomically(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
-  draw_swarm_picture(dir / "swarm.png", s, frames);
+  draw_swarm_picture(dir / "swarm.png", s, first_merged, frames);
 
   nlohmann::json stats;
   stats["agents"] = agents;

@@ -1,6 +1,7 @@
 #pragma once
 // Pictures a person looks at: the map in grey levels, with trajectories and
 // markers drawn over it, saved as PNG.
+#include <algorithm>
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
@@ -34,6 +35,12 @@ inline constexpr int kMaxImageSide = 20000;
 // Throws ConfigError if scale < 1 or the picture would exceed kMaxImageSide,
 // InputError if the raster's cells do not match its size.
 Image render_map(const GridRaster& raster, int scale = 1);
+
+// The largest whole scale (1..4) that keeps a picture of `raster` within
+// about 1600 pixels a side: cells stay visible on small maps.
+inline int fitting_scale(const GridRaster& raster) {
+  return std::max(1, std::min(4, 1600 / std::max({raster.width, raster.height, 1})));
+}
 
 // Continuous pixel coordinates of a world point in an image rendered from
 // `frame` (x right, y down; pixel (i, j) covers [i, i+1) × [j, j+1)). The scale
