@@ -49,11 +49,11 @@ struct DecisionRow {
 
 void write_decisions(const std::string& path, const std::vector<DecisionRow>& rows) {
   write_file_atomically(path, [&rows](std::ostream& out) {
-    out << "index,timestamp,kept,min_correlation,product,window\n";
+    out << "index,timestamp,kept,min_correlation,product,window,reason\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const ScanFilter::Decision& d = rows[i].decision;
-      fmt::print(out, "{},{},{},{:.6f},{:.6f},{}\n", i, rows[i].timestamp, d.keep ? 1 : 0, d.min_correlation,
-                 d.product, d.window);
+      fmt::print(out, "{},{},{},{:.6f},{:.6f},{},{}\n", i, rows[i].timestamp, d.keep ? 1 : 0, d.min_correlation,
+                 d.product, d.window, d.reason);
     }
   });
 }
@@ -165,7 +165,7 @@ void add_filter_command(CLI::App& app) {
   cmd->add_option("log", args->log, "Log file (CARMEN or ROS1 bag)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "Filtered log to write (CARMEN, the kept scans)")->required();
   cmd->add_option("--decisions", args->decisions,
-                  "CSV with one row per scan: index,timestamp,kept,min_correlation,product,window");
+                  "CSV with one row per scan: index,timestamp,kept,min_correlation,product,window,reason");
   cmd->add_option("--plot", args->plot,
                   "PNG over time: min correlation with the window (0.8 bottom to 1.0 top, P_pair in blue, "
                   "dropped scans red) and a red band where scans were dropped");

@@ -28,10 +28,12 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
   const auto start = Clock::now();
   auto next_report = start + std::chrono::seconds(2);
   const std::size_t total = log.scans.size();
+  const std::size_t first_index = slam.scans_processed();  // step indices count every scan the Slam saw
   for (std::size_t i = 0; i < total; ++i) {
     const LaserScan& scan = log.scans[i];
     const SlamStep step = slam.process(scan);
     result.trajectory.push_back({scan.timestamp, step.pose});
+    for (const PoseRevision& r : step.revised) result.trajectory[r.index - first_index].pose = r.pose;
     if (!label.empty() && (i & 63) == 0 && Clock::now() >= next_report) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const double rate = static_cast<double>(i + 1) / elapsed;

@@ -30,6 +30,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
   static const std::map<std::string, std::map<std::string, Field>> table = {
       {"filter",
        {{"enabled", DSS_FIELD(bool, use_filter)},
+        {"revise_dropped", DSS_FIELD(bool, revise_dropped)},
         {"columns", DSS_FIELD(int, filter.columns)},
         {"pair_threshold", DSS_FIELD(double, filter.pair_threshold)},
         {"window_constant", DSS_FIELD(double, filter.window_constant)},

@@ -59,32 +59,38 @@ TEST(FilterCommand, WritesKeptScansDecisionsAndJsonSummary) {
                                    (dir / "decisions.csv").string()});
   const auto summary = nlohmann::json::parse(last_line(out));
   EXPECT_EQ(summary.at("scans_read"), 40);
-  // Window 10 (standing), then 10 dropped + 1 kept by the cap, twice, then 8 dropped.
-  EXPECT_EQ(summary.at("scans_dropped"), 28);
-  EXPECT_EQ(summary.at("scans_kept"), 12);
-  EXPECT_NEAR(summary.at("drop_ratio").get<double>(), 28.0 / 40.0, 1e-12);
+  // Window 10 (standing), then 5 dropped + 1 kept by the cap, five times.
+  EXPECT_EQ(summary.at("scans_dropped"), 25);
+  EXPECT_EQ(summary.at("scans_kept"), 15);
+  EXPECT_NEAR(summary.at("drop_ratio").get<double>(), 25.0 / 40.0, 1e-12);
   EXPECT_GE(summary.at("filter_seconds").get<double>(), 0.0);
 
   const SensorLog kept = read_log(dir / "kept.log");
-  ASSERT_EQ(kept.scans.size(), 12u);
+  ASSERT_EQ(kept.scans.size(), 15u);
   EXPECT_DOUBLE_EQ(kept.scans[0].timestamp, 100.0);
-  EXPECT_DOUBLE_EQ(kept.scans[10].timestamp, 100.0 + 0.1 * 20);  // the first scan the cap kept
+  EXPECT_DOUBLE_EQ(kept.scans[10].timestamp, 100.0 + 0.1 * 15);  // the first scan the cap kept
 
   std::ifstream csv(dir / "decisions.csv");
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "index,timestamp,kept,min_correlation,product,window");
+  EXPECT_EQ(line, "index,timestamp,kept,min_correlation,product,window,reason");
   int rows = 0, kept_rows = 0;
   while (std::getline(csv, line)) {
     std::vector<std::string> fields;
     std::stringstream split(line);
     for (std::string f; std::getline(split, f, ',');) fields.push_back(f);
-    ASSERT_EQ(fields.size(), 6u) << line;
+    ASSERT_EQ(fields.size(), 7u) << line;
     EXPECT_EQ(fields[0], std::to_string(rows));
     kept_rows += fields[2] == "1" ? 1 : 0;
+    // A dropped scan was similar; a kept one names its valve.
+    if (fields[2] == "0") {
+      EXPECT_EQ(fields[6], "similar") << line;
+    } else {
+      EXPECT_NE(fields[6], "similar") << line;
+    }
     ++rows;
   }
-  EXPECT_EQ(kept_rows, 12);
+  EXPECT_EQ(kept_rows, 15);
   EXPECT_EQ(rows, 40);
 }
 
@@ -95,9 +101,9 @@ TEST(FilterCommand, OptionsReachTheFilter) {
                                    "--columns", "20", "--statistic", "mean", "--binning", "sector", "--pair", "0.95"});
   EXPECT_EQ(nlohmann::json::parse(last_line(out)).at("scans_dropped"), 0);
   const std::string fixed = run_cli({"filter", log.string(), "--out", (dir / "kept2.log").string(), "--no-odometry"});
-  // Fixed window 5 without odometry: 5 kept, then 3 times 10 dropped + 1 kept, then 2 dropped.
+  // Fixed window 5 without odometry: 5 kept, then 5 times 5 dropped + 1 kept, then 5 dropped.
   const auto summary = nlohmann::json::parse(last_line(fixed));
-  EXPECT_EQ(summary.at("scans_kept"), 5 + 3);
+  EXPECT_EQ(summary.at("scans_kept"), 5 + 5);
 }
 
 TEST(FilterCommand, BadValuesAreConfigErrorsNamingTheField) {

@@ -35,7 +35,8 @@ void ScanFilterConfig::validate() const {
   require(max_window >= min_window && max_window <= 100, "max_window", "in [min_window, 100]", max_window);
   require(fixed_window >= 1 && fixed_window <= 100, "fixed_window", "in [1, 100]", fixed_window);
   require(speed_samples >= 1 && speed_samples <= 10000, "speed_samples", "in [1, 10000]", speed_samples);
-  require(max_consecutive_drops >= 0, "max_consecutive_drops", ">= 0", max_consecutive_drops);
+  require(max_consecutive_drops >= 0 && max_consecutive_drops <= 1000, "max_consecutive_drops", "in [0, 1000]",
+          max_consecutive_drops);
   // +inf is accepted: "no limit".
   require(max_translation > 0.0, "max_translation", "> 0 (metres)", max_translation);
   require(max_rotation > 0.0, "max_rotation", "> 0 (radians)", max_rotation);
@@ -75,21 +76,19 @@ bool ScanFilter::moved_since_last_kept(const LaserScan& scan) const {
   return std::hypot(motion.x, motion.y) > config_.max_translation || std::abs(motion.theta) > config_.max_rotation;
 }
 
-bool ScanFilter::odometry_contradicted(const LaserScan& scan, const std::vector<double>& histogram) const {
-  if (config_.binning != HistogramBinning::sector || !std::isfinite(config_.doubt_ratio)) return false;
-  if (!scan.odometry || !last_kept_odometry_ || window_.empty()) return false;
-  const std::vector<double>& last = window_.back();  // the last kept scan's histogram
+bool ScanFilter::odometry_contradicted(const LaserScan& scan) const {
+  if (!std::isfinite(config_.doubt_ratio)) return false;
+  if (!scan.odometry || !last_kept_odometry_ || last_kept_ranges_.size() != scan.ranges.size()) return false;
   const double forward = between(*last_kept_odometry_, *scan.odometry).x;
-  if (std::abs(forward) < config_.doubt_min_travel || last.size() != histogram.size()) return false;
-  // Column c covers beams [c n / B, (c + 1) n / B) (scan_histogram); its
-  // bearing in the robot frame is that of its middle beam.
-  const std::size_t n = scan.ranges.size(), columns = histogram.size();
-  if (n == 0 || columns > n) return false;  // no beams: no column has a bearing
+  if (std::abs(forward) < config_.doubt_min_travel) return false;
+  // Beam by beam, not by histogram column: the test must not get coarser
+  // when the histogram has few columns.
   std::vector<double> ahead;
-  for (std::size_t c = 0; c < columns; ++c) {
-    const double middle = 0.5 * static_cast<double>(c * n / columns + (c + 1) * n / columns - 1);
-    const double bearing = normalize_angle(scan.angle_min + middle * scan.angle_increment + scan.laser_offset.theta);
-    if (std::abs(bearing) <= config_.doubt_cone) ahead.push_back(histogram[c] - last[c]);
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const double bearing = normalize_angle(scan.beam_angle(i) + scan.laser_offset.theta);
+    if (std::abs(bearing) > config_.doubt_cone) continue;
+    const float now = scan.ranges[i], then = last_kept_ranges_[i];
+    if (scan.is_valid(now) && scan.is_valid(then)) ahead.push_back(static_cast<double>(now) - then);
   }
   if (ahead.empty()) return false;
   // Positive: the view ahead receded while odometry claims approach (or the reverse).
@@ -125,7 +124,7 @@ ScanFilter::Decision ScanFilter::decide(const LaserScan& scan) {
     d.reason = "dissimilar";
   } else if (moved_since_last_kept(scan)) {
     d.reason = "moved";
-  } else if (odometry_contradicted(scan, histogram)) {
+  } else if (odometry_contradicted(scan)) {
     d.reason = "odometry_doubt";
   } else if (consecutive_drops_ >= config_.max_consecutive_drops) {
     d.reason = "drop_cap";
@@ -141,6 +140,7 @@ ScanFilter::Decision ScanFilter::decide(const LaserScan& scan) {
       window_.pop_front();
     }
     last_kept_odometry_ = scan.odometry;
+    last_kept_ranges_ = scan.ranges;
     consecutive_drops_ = 0;
     ++kept_;
   } else {

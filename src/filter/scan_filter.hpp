@@ -12,9 +12,11 @@
 // in a row).
 //
 // What a drop costs: a dropped scan's pose is the odometry propagated from the
-// last matched pose, and the next kept scan is matched from that prediction.
-// The valves below bound how far odometry is trusted in between; the defaults
-// were measured on the intel, fr079 and mit-csail logs (README, "Scan filter").
+// last matched pose (revised once the next scan is matched, see
+// SlamConfig::revise_dropped), and the next kept scan is matched from that
+// prediction. The valves below bound how far odometry is trusted in between;
+// the defaults were measured on the intel, fr079 and mit-csail logs (README,
+// "Scan filter").
 #include <cstddef>
 #include <deque>
 #include <optional>
@@ -27,8 +29,8 @@
 namespace dsswarm {
 
 struct ScanFilterConfig {
-  // Histogram columns B. 0 = default_column_count(beams): 30 for ~1000 beams
-  // as in the chapter, scaled with the beam count, within [10, 30].
+  // Histogram columns B. 0 = default_column_count(beams): 15 per 1000 beams
+  // (the chapter: "15 or 30" for ~1000 beams), within [6, 30].
   int columns = 0;
   HistogramStatistic statistic = HistogramStatistic::median;  // sector binning only
   HistogramBinning binning = HistogramBinning::sector;
@@ -64,24 +66,28 @@ struct ScanFilterConfig {
   // the last kept scan: the next kept scan is matched from an odometry
   // prediction over that gap, and the matcher searches ~0.1 m / 0.05 rad
   // around its prior (its recovery search 3-4 times wider, ~0.3 m / 0.2 rad).
-  // 0.35 m / 0.2 rad of odometry that is right errs by a few cm / ~1 degree,
-  // inside the normal search. The cost is elsewhere: every dropped scan's
-  // pose is that odometry prediction, so its error enters the trajectory.
-  // Measured (5 seeds): 0.25 m leaves mit-csail (19 cm per scan) only ~20%
-  // of its scans to drop; 0.4 m raised its error to 1.21x the filter-off one.
-  int max_consecutive_drops = 10;
-  double max_translation = 0.35;
+  // What a drop costs in the trajectory is small once the gap's poses are
+  // revised after the next match (SlamConfig::revise_dropped); what the caps
+  // guard against is losing track. Measured over 5-20 seeds (README, "Scan
+  // filter"): at 0.6 m mit-csail (19 cm per scan) drops up to 3 in a row at
+  // 1.11x its filter-off error; 0.35 m capped it at ~30% drops. On intel (4 cm
+  // per scan) runs of 10 drops let its heading drift apart from the filter-off
+  // runs on 7 of 20 seeds, runs of 5 on 3 of 20, as often as filter-off
+  // runs differ among themselves.
+  int max_consecutive_drops = 5;
+  double max_translation = 0.6;
   double max_rotation = 0.2;
-  // Odometry plausibility (sector binning only). fr079's odometry reports
-  // forward motion while the robot backs up: dropped scans there get poses
-  // off by twice the travel, and so does the next kept scan's prior (both
-  // the odometry one and the constant-velocity one the SLAM falls back on);
-  // with drops in a row the matcher lost track on most seeds. The scans
-  // themselves show the direction: after forward travel d >= doubt_min_travel
-  // (odometry, since the last kept scan) the ranges ahead shrink by about d.
-  // When the median change of the columns within doubt_cone of straight
-  // ahead went the other way by more than doubt_ratio * d, the scan is kept.
-  // +inf disables the check.
+  // Odometry plausibility. fr079's odometry reports forward motion while the
+  // robot backs up: dropped scans there get poses off by twice the travel,
+  // and so does the next kept scan's prior (both the odometry one and the
+  // constant-velocity one the SLAM falls back on); with drops in a row the
+  // matcher lost track on most seeds. The scans themselves show the
+  // direction: after forward travel d >= doubt_min_travel (odometry, since
+  // the last kept scan) the ranges ahead shrink by about d. When the median
+  // change of the beams within doubt_cone of straight ahead (beam by beam
+  // against the last kept scan, so the test does not coarsen with fewer
+  // histogram columns) went the other way by more than doubt_ratio * d, the
+  // scan is kept. +inf disables the check.
   double doubt_ratio = 0.5;
   double doubt_min_travel = 0.03;  // metres
   double doubt_cone = 0.45;        // radians either side of the robot's heading
@@ -116,11 +122,12 @@ class ScanFilter {
   void record_travel(const LaserScan& scan);
   int window_size(bool has_odometry) const;
   bool moved_since_last_kept(const LaserScan& scan) const;
-  bool odometry_contradicted(const LaserScan& scan, const std::vector<double>& histogram) const;
+  bool odometry_contradicted(const LaserScan& scan) const;
 
   ScanFilterConfig config_;
   std::deque<std::vector<double>> window_;  // histograms of the newest kept scans, oldest first
   std::optional<Pose2> last_kept_odometry_;
+  std::vector<float> last_kept_ranges_;     // for the odometry plausibility check
   std::optional<Pose2> previous_odometry_;  // of the previous scan, kept or not
   std::deque<double> travel_;               // metres between consecutive scans, newest last
   int consecutive_drops_ = 0;

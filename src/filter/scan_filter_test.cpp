@@ -102,15 +102,17 @@ std::vector<LaserScan> standing(int count, bool with_odometry = true) {
 
 TEST(ScanFilter, StandingRobotDropsNearlyEverythingAfterTheWindow) {
   ScanFilter filter;
+  ASSERT_EQ(filter.config().max_consecutive_drops, 5);
   const FilterRun r = run(filter, standing(120));
   // Standing: v = 0, so the largest window (10) fills first.
   EXPECT_EQ(r.decisions.back().window, 10);
   for (std::size_t i = 0; i < 10; ++i) EXPECT_STREQ(r.decisions[i].reason, "window_filling") << i;
-  // Afterwards only the consecutive-drop cap keeps a scan: 10 dropped, 1 kept.
+  // Afterwards only the consecutive-drop cap keeps a scan: 5 dropped, 1 kept,
+  // 18 times over the 110 scans, then 2 dropped.
   EXPECT_EQ(r.count("dissimilar"), 0u);
-  EXPECT_EQ(r.count("drop_cap"), 10u);
-  EXPECT_EQ(filter.dropped(), 100u);
-  EXPECT_EQ(filter.kept(), 20u);
+  EXPECT_EQ(r.count("drop_cap"), 18u);
+  EXPECT_EQ(filter.dropped(), 92u);
+  EXPECT_EQ(filter.kept(), 28u);
   EXPECT_GT(r.decisions.back().min_correlation, 0.99);
 }
 
@@ -139,8 +141,14 @@ TEST(ScanFilter, RotatingRobotKeepsItsScans) {
 }
 
 TEST(ScanFilter, RobotEnteringANewRoomKeepsScans) {
-  // Walking east 5 cm per scan through the door from room A into room B; valves off.
+  // Walking east 5 cm per scan through the door from room A into room B;
+  // valves off. 10 columns (18-degree sectors): with the default 6 for this
+  // 181-beam scan, the door, which fills about half of one 30-degree sector
+  // while crossing room A, flips that sector's median between the near wall
+  // and the far room every few steps, and room A keeps as many scans as the
+  // doorway (the price of the coarser default, README "Scan filter").
   ScanFilterConfig config;
+  config.columns = 10;
   config.max_translation = std::numeric_limits<double>::infinity();
   config.max_consecutive_drops = 1000;
   ScanFilter filter(config);
@@ -172,10 +180,11 @@ TEST(ScanFilter, ConstantHistogramsAreIdenticalAndAChangeIsKept) {
   Rng rng(1);
   scans.push_back(scan_at(Pose2(2.0, 2.5, 0.3), rng, false));  // the lidar sees again
   const FilterRun r = run(filter, scans);
-  for (std::size_t i = 5; i < 11; ++i) {
+  for (std::size_t i = 5; i < 10; ++i) {
     EXPECT_FALSE(r.decisions[i].keep) << i;
     EXPECT_EQ(r.decisions[i].min_correlation, 1.0);
   }
+  EXPECT_STREQ(r.decisions[10].reason, "drop_cap");  // 5 in a row: the cap
   EXPECT_TRUE(r.decisions.back().keep);
   EXPECT_STREQ(r.decisions.back().reason, "dissimilar");
   EXPECT_EQ(r.decisions.back().min_correlation, 0.0);
@@ -192,8 +201,9 @@ TEST(ScanFilter, NaNRangesAreSkipped) {
   }
   ScanFilter filter;
   run(filter, scans);  // checks every correlation is finite
-  // 30 scans after the window of 10: 10 dropped, 1 kept (cap), 10 dropped, 1 kept, 8 dropped.
-  EXPECT_EQ(filter.dropped(), 28u);
+  // 30 scans after the window of 10: 5 dropped, 1 kept (cap), four more
+  // times, then 5 dropped.
+  EXPECT_EQ(filter.dropped(), 25u);
 
   // Random dropouts (20% of the beams) move sector medians, but never give NaN.
   Rng rng(11);
@@ -235,9 +245,12 @@ TEST(ScanFilter, ConsecutiveDropCap) {
 TEST(ScanFilter, OdometryMotionSinceTheLastKeptScanKeepsTheScan) {
   // The same view while odometry says the robot moves 12 cm per scan (a
   // featureless corridor, say): every third scan is past 0.35 m and kept.
+  ScanFilterConfig config;
+  config.max_translation = 0.35;
+  config.max_consecutive_drops = 10;
   std::vector<LaserScan> scans = standing(30);
   for (std::size_t i = 0; i < scans.size(); ++i) scans[i].odometry = Pose2(0.12 * double(i), 0.0, 0.0);
-  ScanFilter moving;
+  ScanFilter moving(config);
   const FilterRun r = run(moving, scans);
   EXPECT_EQ(r.decisions.back().window, 1);  // v = 12 cm: 27 / 144 rounds to 0, clamped to 1
   for (std::size_t i = 1; i < scans.size(); ++i) {
@@ -247,7 +260,7 @@ TEST(ScanFilter, OdometryMotionSinceTheLastKeptScanKeepsTheScan) {
 
   // Turning 0.08 rad per scan: 0.24 rad after 3 scans exceeds 0.2.
   for (std::size_t i = 0; i < scans.size(); ++i) scans[i].odometry = Pose2(0.0, 0.0, 0.08 * double(i));
-  ScanFilter turning;
+  ScanFilter turning(config);
   const FilterRun t = run(turning, scans);
   EXPECT_GT(t.count("moved"), 5u);
   EXPECT_EQ(t.count("drop_cap"), 0u);

@@ -7,8 +7,8 @@
 namespace dsswarm {
 
 int default_column_count(std::size_t beams) {
-  const double scaled = std::round(30.0 * static_cast<double>(beams) / 1000.0);
-  return static_cast<int>(std::clamp(scaled, 10.0, 30.0));
+  const double scaled = std::round(15.0 * static_cast<double>(beams) / 1000.0);
+  return static_cast<int>(std::clamp(scaled, 6.0, 30.0));
 }
 
 

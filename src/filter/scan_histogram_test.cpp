@@ -27,16 +27,17 @@ HistogramSpec sectors(int columns, HistogramStatistic statistic = HistogramStati
   return {columns, statistic, HistogramBinning::sector};
 }
 
-TEST(DefaultColumnCount, ThirtyForAThousandBeamsScaledWithinTenToThirty) {
-  EXPECT_EQ(default_column_count(1000), 30);
-  EXPECT_EQ(default_column_count(1040), 30);
-  EXPECT_EQ(default_column_count(700), 21);
-  EXPECT_EQ(default_column_count(500), 15);
-  EXPECT_EQ(default_column_count(400), 12);
-  EXPECT_EQ(default_column_count(361), 11);  // mit-csail
-  EXPECT_EQ(default_column_count(360), 11);  // fr079
-  EXPECT_EQ(default_column_count(180), 10);  // intel: 5.4 scaled, raised to the floor
-  EXPECT_EQ(default_column_count(0), 10);
+TEST(DefaultColumnCount, FifteenPerThousandBeamsWithinSixToThirty) {
+  EXPECT_EQ(default_column_count(1000), 15);
+  EXPECT_EQ(default_column_count(1040), 16);
+  EXPECT_EQ(default_column_count(700), 11);  // 10.5 rounds up
+  EXPECT_EQ(default_column_count(500), 8);
+  EXPECT_EQ(default_column_count(400), 6);
+  EXPECT_EQ(default_column_count(361), 6);  // mit-csail: 5.4 scaled, raised to the floor
+  EXPECT_EQ(default_column_count(360), 6);  // fr079
+  EXPECT_EQ(default_column_count(180), 6);  // intel
+  EXPECT_EQ(default_column_count(0), 6);
+  EXPECT_EQ(default_column_count(2000), 30);
   EXPECT_EQ(default_column_count(5000), 30);
 }
 

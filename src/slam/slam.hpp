@@ -22,6 +22,13 @@ struct SlamConfig {
   // Scan filter in front of the matcher (off by default; `run --filter`).
   bool use_filter = false;
   ScanFilterConfig filter;
+  // A dropped scan's pose is at first the motion prediction from the last
+  // matched pose (odometry, or constant velocity). true: once the next scan
+  // is matched, the dropped poses of the gap are revised (SlamStep::revised),
+  // blending the forward prediction with the one back from that match, so the
+  // correction the match found is spread over the gap instead of landing at
+  // its end. The online pose and the map are the same either way.
+  bool revise_dropped = true;
   MapConfig map;
   MatcherConfig matcher;
   PointWeightConfig points;
@@ -54,13 +61,23 @@ struct SlamConfig {
   void validate() const;
 };
 
+// A better pose for an earlier scan, found after the fact.
+struct PoseRevision {
+  std::size_t index = 0;  // the scan's position in process() order, from 0
+  Pose2 pose;
+};
+
 struct SlamStep {
+  std::size_t index = 0;  // this scan's position in process() order, from 0
   Pose2 pose;            // estimated robot base pose in the map frame
   Pose2 prior;           // prediction before matching
   bool matched = false;  // false: too few points, match rejected, or dropped (pose = prior)
   bool dropped = false;  // the scan filter judged it redundant: not matched, not inserted
   double score = 0.0;    // matcher score on the finest level
   double inlier_ratio = 0.0;  // verification measure of the match (see match_quality)
+  // Matched after dropped scans (SlamConfig::revise_dropped): their revised
+  // poses, oldest first. Callers keeping a trajectory overwrite those entries.
+  std::vector<PoseRevision> revised;
 };
 
 class Slam {
@@ -103,6 +120,8 @@ class Slam {
   // Bookkeeping after every scan: odometry anchor and constant-velocity state.
   void advance(const LaserScan& scan, const Pose2& pose);
   bool odometry_stale(const LaserScan& scan) const;
+  // Fills step.revised for the dropped scans since the last kept one.
+  void revise_gap(SlamStep& step) const;
   // A wider, costlier search for scans whose normal match fails verification.
   static MatcherConfig recovery_config(const MatcherConfig& normal);
 
@@ -125,6 +144,10 @@ class Slam {
   std::optional<Pose2> anchor_odometry_;
   Pose2 anchor_pose_;
   bool odometry_moving_ = false;  // did the last fresh odometry increment move?
+  // Dropped scans since the last kept one (index, predicted pose), and the
+  // pose of that kept scan, where their prediction started.
+  std::vector<PoseRevision> gap_;
+  Pose2 gap_start_;
   std::optional<Pose2> last_insert_pose_;
   std::optional<Pose2> last_odometry_;  // the previous scan's reading
   int still_scans_ = 0;                 // consecutive scans with the same odometry reading

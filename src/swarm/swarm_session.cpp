@@ -62,7 +62,9 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
     if (who == streams_.size()) break;
     const LaserScan& scan = streams_[who].scans[next[who]++];
     tracks_[who].timestamps.push_back(scan.timestamp);
-    tracks_[who].steps.push_back(agents_[who]->process(scan));
+    AgentTrack& track = tracks_[who];
+    track.steps.push_back(agents_[who]->process(scan));
+    for (const PoseRevision& r : track.steps.back().revised) track.steps[r.index].pose = r.pose;
     if (progress && ++done % report_every == 0) progress(done, total);
   }
   if (progress) progress(total, total);
