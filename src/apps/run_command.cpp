@@ -11,7 +11,7 @@
 #include "apps/slam_options.hpp"
 #include "apps/slam_runner.hpp"
 #include "common/errors.hpp"
-#include "config/slam_config_json.hpp"
+#include "config/config_json.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/maps/dsmap.hpp"
 
@@ -119,8 +119,8 @@ void add_run_command(CLI::App& app) {
 }
 
 void add_config_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("config", "Print the default SLAM configuration (JSON, for --config)");
-  cmd->callback([] { fmt::print("{}\n", to_json(SlamConfig{}).dump(2)); });
+  CLI::App* cmd = app.add_subcommand("config", "Print the default configuration (JSON, for --config): SLAM and swarm sections");
+  cmd->callback([] { fmt::print("{}\n", to_json(SwarmConfig{}).dump(2)); });
 }
 
 }  // namespace dsswarm

@@ -5,12 +5,12 @@
 #include <vector>
 
 #include "common/errors.hpp"
-#include "config/slam_config_json.hpp"
+#include "config/config_json.hpp"
 
 namespace dsswarm {
 
 void add_slam_options(CLI::App& command, SlamOptions& o) {
-  command.add_option("--config", o.config_file, "SLAM configuration (JSON; `dsswarm config` prints the defaults)")
+  command.add_option("--config", o.config_file, "Configuration (JSON; `dsswarm config` prints the defaults)")
       ->check(CLI::ExistingFile);
   command.add_option("--seed", o.seed, "Seed of the matcher's random search (same seed, same result)");
   command.add_flag("--no-odometry", o.no_odometry, "Ignore odometry (constant-velocity motion prior)");
@@ -20,16 +20,19 @@ void add_slam_options(CLI::App& command, SlamOptions& o) {
   command.add_option("--resolution", o.resolution, "Map cell size, metres")->check(CLI::Range(0.005, 2.0));
 }
 
-SlamConfig SlamOptions::resolve() const {
-  SlamConfig c;
-  if (!config_file.empty()) load_slam_config(config_file, c);
+SlamConfig SlamOptions::resolve() const { return resolve_swarm().slam; }
+
+SwarmConfig SlamOptions::resolve_swarm() const {
+  SwarmConfig swarm;
+  if (!config_file.empty()) load_config(config_file, swarm);
+  SlamConfig& c = swarm.slam;
   if (seed) c.seed = *seed;
   if (no_odometry) c.use_odometry = false;
   if (filter) c.use_filter = true;
   if (evaluations) c.matcher.evaluations = *evaluations;
   if (resolution) c.map.resolution = *resolution;
-  c.validate();
-  return c;
+  swarm.validate();
+  return swarm;
 }
 
 Pose2 parse_pose_option(const std::string& text, const std::string& option) {

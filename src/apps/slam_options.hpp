@@ -6,6 +6,7 @@
 #include <string>
 
 #include "slam/slam.hpp"
+#include "swarm/swarm_session.hpp"
 
 namespace dsswarm {
 
@@ -19,6 +20,8 @@ struct SlamOptions {
 
   // Defaults, then the config file, then the flags given on the command line.
   SlamConfig resolve() const;
+  // The same with the config file's swarm sections (encounter, swarm).
+  SwarmConfig resolve_swarm() const;
 };
 
 void add_slam_options(CLI::App& command, SlamOptions& options);

@@ -6,7 +6,7 @@
 #include <chrono>
 
 #include "common/errors.hpp"
-#include "config/slam_config_json.hpp"
+#include "config/config_json.hpp"
 #include "io/atomic_file.hpp"
 #include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"

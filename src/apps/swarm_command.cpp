@@ -36,9 +36,8 @@ void print_encounter_summary(const nlohmann::json& stats) {
 }
 
 void run_demo(const DemoArgs& a) {
-  SwarmConfig config;
-  config.slam = a.slam.resolve();
-  config.encounter.locate.search_radius = a.range;
+  SwarmConfig config = a.slam.resolve_swarm();
+  config.encounter.locate.search_radius = a.range;  // the proximity range bounds where the other robot is
   config.merge = !a.no_merge;
   SwarmSimConfig sim;
   sim.robots = a.robots;
@@ -95,8 +94,7 @@ void run_scenario(SwarmArgs a) {
   SwarmScenario scenario = load_swarm_scenario(a.scenario);
   for (const std::string& w : scenario.warnings) spdlog::warn("{}", w);
   if (a.slam.config_file.empty() && scenario.config) a.slam.config_file = *scenario.config;
-  SwarmConfig config;
-  config.slam = a.slam.resolve();
+  SwarmConfig config = a.slam.resolve_swarm();
   config.merge = !a.no_merge;
   std::size_t scans = 0;
   for (const AgentStream& s : scenario.streams) scans += s.scans.size();

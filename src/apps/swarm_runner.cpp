@@ -9,7 +9,7 @@
 
 #include "apps/slam_runner.hpp"
 #include "common/errors.hpp"
-#include "config/slam_config_json.hpp"
+#include "config/config_json.hpp"
 #include "eval/ate.hpp"
 #include "io/atomic_file.hpp"
 #include "io/maps/dsmap.hpp"
@@ -45,6 +45,23 @@ Pose2 truth_at(const Trajectory& truth, double t) {
   for (const StampedPose& p : truth)
     if (std::abs(p.timestamp - t) < std::abs(best->timestamp - t)) best = &p;
   return best->pose;
+}
+
+// How agent `track`'s map frame sits in the world *around* `place` as of log
+// time `until`: the least-squares alignment of its poses up to then whose
+// true position lies within `radius` of `place` (those poses built the map
+// there). Nullopt with fewer than 10 such poses.
+std::optional<Pose2> local_alignment(const AgentTrack& track, const Trajectory& truth, const Eigen::Vector2d& place,
+                                     double until, double radius) {
+  Trajectory near, near_truth;
+  for (std::size_t i = 0; i < track.steps.size() && track.timestamps[i] <= until; ++i) {
+    const Pose2 t = truth_at(truth, track.timestamps[i]);
+    if ((t.translation() - place).norm() > radius) continue;
+    near.push_back({track.timestamps[i], track.steps[i].pose});
+    near_truth.push_back({track.timestamps[i], t});
+  }
+  if (near.size() < 10) return std::nullopt;
+  return evaluate_ate(near, near_truth).alignment;
 }
 
 // Cells (on a 0.1 m world lattice) where `grid` holds evidence, placed in the
@@ -254,6 +271,12 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       };
       e["frame_error"] = transform_error(true_transform);
       e["aligned_error"] = transform_error(alignments[ia].inverse() * alignments[ib]);
+      // The maps as they lie where the robots met: each frame aligned by its
+      // poses within 8 m of B (those built the map the placement used).
+      const Eigen::Vector2d meeting = truth_at(tb, r.b_log_time).translation();
+      const auto la = local_alignment(s.track(ia), ta, meeting, r.a_log_time, 8.0);
+      const auto lb = local_alignment(s.track(ib), tb, meeting, r.b_log_time, 8.0);
+      if (la && lb) e["local_error"] = transform_error(la->inverse() * *lb);
       // Where the transform was measured: the relative pose of the two robots.
       const Pose2 true_rel = between(truth_at(ta, r.a_log_time), truth_at(tb, r.b_log_time));
       const Pose2 est_rel = r.a_pose_in_a.inverse() * est * r.b_pose_in_b;
@@ -299,6 +322,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   stats["mean_merge_ms"] = accepted > 0 ? merge_ms / static_cast<double>(accepted) : 0.0;
   stats["mean_bytes"] = bytes / n;
   stats["peak_rss_bytes"] = peak_rss_bytes();
+  stats["config"] = to_json(s.config());
   if (truth) {
     stats["worst_accepted_error"] = {worst_xy, worst_theta};
     stats["wrong_merges"] = wrong;

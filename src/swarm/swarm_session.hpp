@@ -92,6 +92,7 @@ class SwarmSession {
   const AgentTrack& track(std::size_t i) const { return tracks_[i]; }
   const std::vector<EncounterRecord>& encounters() const { return records_; }
   std::size_t events_skipped() const { return skipped_; }
+  const SwarmConfig& config() const { return config_; }
 
  private:
   void encounter(const EncounterEvent& e);

@@ -1,9 +1,12 @@
-#include "config/slam_config_json.hpp"
+#include "config/config_json.hpp"
 
 #include <fstream>
 #include <functional>
 #include <map>
 #include <string>
+#include <type_traits>
+
+#include <fmt/format.h>
 
 #include "common/errors.hpp"
 
@@ -14,17 +17,30 @@ using nlohmann::json;
 
 // One table of fields drives both directions, so the two can never disagree.
 struct Field {
-  std::function<json(const SlamConfig&)> get;
-  std::function<void(const json&, SlamConfig&)> set;
+  std::function<json(const SwarmConfig&)> get;
+  std::function<void(const json&, SwarmConfig&)> set;
 };
+
+// A float is written as the shortest decimal that reads back as the same
+// float (0.4, not its double widening 0.4000000059604645).
+template <typename T>
+json to_json_value(const T& v) {
+  if constexpr (std::is_same_v<T, float>) return json(std::stod(fmt::format("{}", v)));
+  return json(v);
+}
 
 template <typename T, typename Member>
 Field field(Member member) {
-  return {[member](const SlamConfig& c) { return json(std::invoke(member, c)); },
-          [member](const json& j, SlamConfig& c) { std::invoke(member, c) = j.get<T>(); }};
+  return {[member](const SwarmConfig& c) { return to_json_value<T>(std::invoke(member, c)); },
+          [member](const json& j, SwarmConfig& c) { std::invoke(member, c) = j.get<T>(); }};
 }
 
-#define DSS_FIELD(T, path) field<T>([](auto& c) -> auto& { return c.path; })
+// A SLAM field lives in SwarmConfig::slam; a swarm field in SwarmConfig itself.
+#define DSS_FIELD(T, path) field<T>([](auto& c) -> auto& { return c.slam.path; })
+#define DSS_SWARM_FIELD(T, path) field<T>([](auto& c) -> auto& { return c.path; })
+
+// The swarm sections; a single robot's configuration has only the others.
+bool is_swarm_section(const std::string& section) { return section == "encounter" || section == "swarm"; }
 
 const std::map<std::string, std::map<std::string, Field>>& fields() {
   static const std::map<std::string, std::map<std::string, Field>> table = {
@@ -88,22 +104,75 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"pause_after_still_scans", DSS_FIELD(int, pause_after_still_scans)},
         {"insert_min_travel", DSS_FIELD(double, insert_min_travel)},
         {"insert_min_rotation", DSS_FIELD(double, insert_min_rotation)}}},
+      {"encounter",
+       {{"search_radius", DSS_SWARM_FIELD(double, encounter.locate.search_radius)},
+        {"coarse_step_xy", DSS_SWARM_FIELD(double, encounter.locate.coarse_step_xy)},
+        {"coarse_step_theta", DSS_SWARM_FIELD(double, encounter.locate.coarse_step_theta)},
+        {"coarse_points", DSS_SWARM_FIELD(int, encounter.locate.coarse_points)},
+        {"candidates", DSS_SWARM_FIELD(int, encounter.locate.candidates)},
+        {"surroundings_radius", DSS_SWARM_FIELD(double, encounter.locate.surroundings_radius)},
+        {"surroundings_points", DSS_SWARM_FIELD(int, encounter.locate.surroundings_points)},
+        {"mode_separation_xy", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_xy)},
+        {"mode_separation_theta", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_theta)},
+        {"refine_evaluations", DSS_SWARM_FIELD(int, encounter.locate.refine.evaluations)},
+        {"min_known_fraction", DSS_SWARM_FIELD(double, encounter.min_known_fraction)},
+        {"min_inlier_ratio", DSS_SWARM_FIELD(double, encounter.min_inlier_ratio)},
+        {"min_same_side", DSS_SWARM_FIELD(double, encounter.min_same_side)},
+        {"max_runner_up_ratio", DSS_SWARM_FIELD(double, encounter.max_runner_up_ratio)},
+        {"agree_xy", DSS_SWARM_FIELD(double, encounter.agree_xy)},
+        {"agree_theta", DSS_SWARM_FIELD(double, encounter.agree_theta)}}},
+      {"swarm",
+       {{"remerge_interval", DSS_SWARM_FIELD(double, remerge_interval)},
+        {"confirm", DSS_SWARM_FIELD(bool, confirm)},
+        {"confirm_xy", DSS_SWARM_FIELD(double, confirm_xy)},
+        {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)}}},
   };
   return table;
 }
 
 #undef DSS_FIELD
+#undef DSS_SWARM_FIELD
+
+void load_json_file(const std::filesystem::path& path, json& j) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("cannot open config file " + path.string());
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw ConfigError(path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+template <typename Config>
+void load(const std::filesystem::path& path, Config& config) {
+  json j;
+  load_json_file(path, j);
+  apply_json(j, config, path.string());
+  try {
+    config.validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError(path.string() + ": " + e.what());
+  }
+}
 
 }  // namespace
 
-json to_json(const SlamConfig& config) {
+json to_json(const SwarmConfig& config) {
   json j = json::object();
   for (const auto& [section, members] : fields())
     for (const auto& [name, f] : members) j[section][name] = f.get(config);
   return j;
 }
 
-void apply_json(const json& j, SlamConfig& config, const std::string& source) {
+json to_json(const SlamConfig& config) {
+  SwarmConfig swarm;
+  swarm.slam = config;
+  json j = to_json(swarm);
+  for (auto it = j.begin(); it != j.end();) it = is_swarm_section(it.key()) ? j.erase(it) : std::next(it);
+  return j;
+}
+
+void apply_json(const json& j, SwarmConfig& config, const std::string& source) {
   if (!j.is_object()) throw ConfigError(source + ": expected a JSON object at the top level");
   for (const auto& [section, body] : j.items()) {
     const auto s = fields().find(section);
@@ -121,21 +190,15 @@ void apply_json(const json& j, SlamConfig& config, const std::string& source) {
   }
 }
 
-void load_slam_config(const std::filesystem::path& path, SlamConfig& config) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("cannot open config file " + path.string());
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw ConfigError(path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-  apply_json(j, config, path.string());
-  try {
-    config.validate();
-  } catch (const ConfigError& e) {
-    throw ConfigError(path.string() + ": " + e.what());
-  }
+void apply_json(const json& j, SlamConfig& config, const std::string& source) {
+  SwarmConfig swarm;
+  swarm.slam = config;
+  apply_json(j, swarm, source);
+  config = swarm.slam;
 }
+
+void load_config(const std::filesystem::path& path, SwarmConfig& config) { load(path, config); }
+
+void load_slam_config(const std::filesystem::path& path, SlamConfig& config) { load(path, config); }
 
 }  // namespace dsswarm

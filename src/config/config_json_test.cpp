@@ -1,4 +1,4 @@
-#include "config/slam_config_json.hpp"
+#include "config/config_json.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +21,32 @@ TEST(SlamConfigJson, RoundTripsEveryField) {
   EXPECT_EQ(to_json(d), to_json(c));
   EXPECT_EQ(d.matcher.evaluations, 99);
   EXPECT_FALSE(d.use_odometry);
+  // Floats as written by a person: 0.4, not 0.4000000059604645.
+  EXPECT_EQ(to_json(c).at("evidence").at("hit_occupied").dump(), "0.4");
+}
+
+TEST(ConfigJson, SwarmSectionsRoundTripAndSingleRobotsIgnoreThem) {
+  SwarmConfig c;
+  c.slam.matcher.evaluations = 77;
+  c.encounter.agree_xy = 0.03;
+  c.encounter.locate.surroundings_radius = 12.0;
+  c.confirm_theta = 0.01;
+  c.confirm = false;
+  const nlohmann::json j = to_json(c);
+  EXPECT_EQ(j.at("encounter").at("agree_xy"), 0.03);
+  EXPECT_EQ(j.at("swarm").at("confirm"), false);
+  SwarmConfig d;
+  apply_json(j, d);
+  EXPECT_EQ(to_json(d), j);
+  EXPECT_DOUBLE_EQ(d.encounter.locate.surroundings_radius, 12.0);
+  EXPECT_FALSE(d.confirm);
+  // A single robot reads the same file: its sections apply, the swarm's are
+  // checked (a typo there is still an error) and otherwise ignored.
+  SlamConfig single;
+  apply_json(j, single);
+  EXPECT_EQ(single.matcher.evaluations, 77);
+  EXPECT_FALSE(to_json(single).contains("encounter"));
+  EXPECT_THROW(apply_json(nlohmann::json::parse(R"({"swarm": {"confirmxy": 1}})"), single), ConfigError);
 }
 
 TEST(SlamConfigJson, UnknownKeyIsNamed) {
@@ -52,6 +78,14 @@ TEST(SlamConfigJson, FileWithOutOfRangeValueFailsValidation) {
   EXPECT_THROW(load_slam_config(p, c), ConfigError);
   std::ofstream(p) << "{ not json";
   EXPECT_THROW(load_slam_config(p, c), ConfigError);
+  std::ofstream(p) << R"({"encounter": {"agree_xy": -1}})";
+  SwarmConfig swarm;
+  try {
+    load_config(p, swarm);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("agree_xy"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
