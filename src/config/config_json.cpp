@@ -5,12 +5,47 @@
 #include <map>
 #include <string>
 #include <type_traits>
+#include <array>
+#include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "common/errors.hpp"
 
 namespace dsswarm {
+
+// Enumerations are written by name. (nlohmann's NLOHMANN_JSON_SERIALIZE_ENUM
+// would read an unknown name as the first value, silently.)
+namespace {
+template <typename Enum>
+using EnumNames = std::array<std::pair<Enum, const char*>, 2>;
+constexpr EnumNames<HistogramStatistic> kStatistics{{{HistogramStatistic::median, "median"},
+                                                     {HistogramStatistic::mean, "mean"}}};
+constexpr EnumNames<HistogramBinning> kBinnings{{{HistogramBinning::sector, "sector"},
+                                                 {HistogramBinning::distance, "distance"}}};
+
+template <typename Enum>
+std::string name_of(Enum e, const EnumNames<Enum>& names) {
+  for (const auto& [value, name] : names)
+    if (value == e) return name;
+  return "?";
+}
+
+template <typename Enum>
+Enum value_of(const nlohmann::json& j, const EnumNames<Enum>& names) {
+  const std::string given = j.get<std::string>();  // not a string: a type error
+  for (const auto& [value, name] : names)
+    if (given == name) return value;
+  throw std::invalid_argument(fmt::format("must be one of {}, {} (got \"{}\")", names[0].second, names[1].second, given));
+}
+}  // namespace
+
+void to_json(nlohmann::json& j, HistogramStatistic s) { j = name_of(s, kStatistics); }
+void from_json(const nlohmann::json& j, HistogramStatistic& s) { s = value_of(j, kStatistics); }
+void to_json(nlohmann::json& j, HistogramBinning b) { j = name_of(b, kBinnings); }
+void from_json(const nlohmann::json& j, HistogramBinning& b) { b = value_of(j, kBinnings); }
+
 namespace {
 
 using nlohmann::json;
@@ -48,6 +83,8 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
        {{"enabled", DSS_FIELD(bool, use_filter)},
         {"revise_dropped", DSS_FIELD(bool, revise_dropped)},
         {"columns", DSS_FIELD(int, filter.columns)},
+        {"statistic", DSS_FIELD(HistogramStatistic, filter.statistic)},
+        {"binning", DSS_FIELD(HistogramBinning, filter.binning)},
         {"pair_threshold", DSS_FIELD(double, filter.pair_threshold)},
         {"window_constant", DSS_FIELD(double, filter.window_constant)},
         {"min_window", DSS_FIELD(int, filter.min_window)},
@@ -185,6 +222,8 @@ void apply_json(const json& j, SwarmConfig& config, const std::string& source) {
         f->second.set(value, config);
       } catch (const json::exception&) {
         throw ConfigError(source + ": '" + section + "." + name + "' has the wrong type (" + value.dump() + ")");
+      } catch (const std::invalid_argument& e) {
+        throw ConfigError(source + ": '" + section + "." + name + "' " + e.what());
       }
     }
   }

@@ -60,6 +60,23 @@ TEST(SlamConfigJson, UnknownKeyIsNamed) {
   }
 }
 
+TEST(ConfigJson, EnumerationsByName) {
+  SlamConfig c;
+  apply_json(nlohmann::json::parse(R"({"filter": {"statistic": "mean", "binning": "distance"}})"), c);
+  EXPECT_EQ(c.filter.statistic, HistogramStatistic::mean);
+  EXPECT_EQ(c.filter.binning, HistogramBinning::distance);
+  EXPECT_EQ(to_json(c).at("filter").at("statistic"), "mean");
+  try {
+    apply_json(nlohmann::json::parse(R"({"filter": {"statistic": "mode"}})"), c, "my.json");
+    FAIL();
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("filter.statistic"), std::string::npos) << m;
+    EXPECT_NE(m.find("median, mean"), std::string::npos) << m;
+  }
+  EXPECT_THROW(apply_json(nlohmann::json::parse(R"({"filter": {"binning": 3}})"), c), ConfigError);
+}
+
 TEST(SlamConfigJson, WrongTypeIsNamed) {
   SlamConfig c;
   try {
