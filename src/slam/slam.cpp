@@ -96,6 +96,20 @@ SlamStep Slam::process(const LaserScan& scan) {
   step.prior = first ? pose_ : predict(scan);
   ++processed_;
 
+  if (note_standing_still(scan) && !first) {
+    // Parked: hold the pose. Matching the same view over and over only lets
+    // the pose random-walk (a constant-velocity prior keeps any creep going;
+    // simulated robots waiting at a rendezvous crept 0.25 m and 1.3° in 80 s),
+    // and adding evidence would pile up one viewpoint's noise until the map,
+    // and then the pose, creep too.
+    step.pose = pose_;
+    step.still = true;
+    ++held_;
+    gap_.clear();
+    advance(scan, step.pose);
+    return step;
+  }
+
   if (config_.use_filter) {
     // Timed here because the filter's cost is part of the price of a scan.
     const auto t0 = std::chrono::steady_clock::now();
@@ -131,17 +145,7 @@ SlamStep Slam::process(const LaserScan& scan) {
     match_and_verify(points, step);
   }
 
-  if (scan.odometry) {
-    const bool same = last_odometry_ && scan.odometry->x == last_odometry_->x &&
-                      scan.odometry->y == last_odometry_->y && scan.odometry->theta == last_odometry_->theta;
-    still_scans_ = same ? still_scans_ + 1 : 0;
-    has_moved_ = has_moved_ || (last_odometry_ && !same);
-    last_odometry_ = scan.odometry;
-  }
-  // Not before the robot first moves: a young map needs its first views.
-  const bool standing_still =
-      has_moved_ && config_.pause_after_still_scans > 0 && still_scans_ >= config_.pause_after_still_scans;
-  if (enough_points && (founding || step.matched) && !standing_still) {
+  if (enough_points && (founding || step.matched)) {
     bool insert = !last_insert_pose_;
     if (last_insert_pose_) {
       const Pose2 d = between(*last_insert_pose_, step.pose);
@@ -157,6 +161,21 @@ SlamStep Slam::process(const LaserScan& scan) {
 
   advance(scan, step.pose);
   return step;
+}
+
+bool Slam::note_standing_still(const LaserScan& scan) {
+  if (!config_.use_odometry || !scan.odometry) return false;
+  // Unchanged within a micrometre / microradian: odometry integrated in
+  // floating point can move by rounding alone (simulated parked robots did).
+  constexpr double kSame = 1e-6;
+  const bool same = last_odometry_ && std::abs(scan.odometry->x - last_odometry_->x) < kSame &&
+                    std::abs(scan.odometry->y - last_odometry_->y) < kSame &&
+                    std::abs(normalize_angle(scan.odometry->theta - last_odometry_->theta)) < kSame;
+  still_scans_ = same ? still_scans_ + 1 : 0;
+  has_moved_ = has_moved_ || (last_odometry_ && !same);
+  last_odometry_ = scan.odometry;
+  // Not before the robot first moves: a young map needs its first views.
+  return has_moved_ && config_.pause_after_still_scans > 0 && still_scans_ >= config_.pause_after_still_scans;
 }
 
 void Slam::revise_gap(SlamStep& step) const {

@@ -50,10 +50,11 @@ struct SlamConfig {
   double verify_min_inliers = 0.3;
   double verify_relative = 0.75;
   int verify_max_consecutive = 10;
-  // A robot whose odometry has not changed for this many scans is standing
-  // still: it keeps localizing but stops adding evidence, which would only
-  // pile up one viewpoint's noise until the map (and the pose) creep. Odometry
-  // that stalls while the robot moves (real logs do) freezes for fewer scans.
+  // A robot whose odometry has not changed for this many scans (after it
+  // first moved) is standing still: its pose is held and its scans are
+  // neither matched nor inserted until the odometry changes again (see
+  // process). Odometry that stalls while the robot moves (real logs do)
+  // freezes for fewer scans. Needs use_odometry.
   int pause_after_still_scans = 20;     // 0: never pause
   double insert_min_travel = 0.0;       // m
   double insert_min_rotation = 0.0;     // rad
@@ -71,8 +72,9 @@ struct SlamStep {
   std::size_t index = 0;  // this scan's position in process() order, from 0
   Pose2 pose;            // estimated robot base pose in the map frame
   Pose2 prior;           // prediction before matching
-  bool matched = false;  // false: too few points, match rejected, or dropped (pose = prior)
+  bool matched = false;  // false: too few points, match rejected, dropped (pose = prior) or still
   bool dropped = false;  // the scan filter judged it redundant: not matched, not inserted
+  bool still = false;    // standing still (pause_after_still_scans): pose held, not matched, not inserted
   double score = 0.0;    // matcher score on the finest level
   double inlier_ratio = 0.0;  // verification measure of the match (see match_quality)
   // Matched after dropped scans (SlamConfig::revise_dropped): their revised
@@ -109,6 +111,7 @@ class Slam {
   std::size_t matches_rejected() const { return rejected_; }
   std::size_t recoveries() const { return recoveries_; }
   std::size_t scans_dropped() const { return filter_.dropped(); }
+  std::size_t scans_held() const { return held_; }  // standing still (SlamStep::still)
   double filter_seconds() const { return filter_seconds_; }
   const SlamConfig& config() const { return config_; }
 
@@ -120,6 +123,8 @@ class Slam {
   // Bookkeeping after every scan: odometry anchor and constant-velocity state.
   void advance(const LaserScan& scan, const Pose2& pose);
   bool odometry_stale(const LaserScan& scan) const;
+  // Counts scans with unchanged odometry; true once the robot stands still.
+  bool note_standing_still(const LaserScan& scan);
   // Fills step.revised for the dropped scans since the last kept one.
   void revise_gap(SlamStep& step) const;
   // A wider, costlier search for scans whose normal match fails verification.
@@ -155,6 +160,7 @@ class Slam {
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
   std::size_t rejected_ = 0;
+  std::size_t held_ = 0;
   std::size_t recoveries_ = 0;
   int consecutive_rejections_ = 0;
   double inlier_average_ = 0.0;  // running average inlier ratio of accepted matches

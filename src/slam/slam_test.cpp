@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <optional>
 
 namespace dsswarm {
 namespace {
@@ -210,7 +211,7 @@ TEST(Slam, DroppedPosesAreRevisedOnceTheNextScanIsMatched) {
   for (const auto& s : d.scans) EXPECT_TRUE(plain.process(s).revised.empty());
 }
 
-TEST(Slam, ARobotStandingStillStopsAddingEvidenceButKeepsLocalizing) {
+TEST(Slam, ARobotStandingStillHoldsItsPoseAndStopsAddingEvidence) {
   const auto w = world();
   SlamConfig config;
   config.pause_after_still_scans = 5;
@@ -222,20 +223,35 @@ TEST(Slam, ARobotStandingStillStopsAddingEvidenceButKeepsLocalizing) {
     slam.process(s);
   }
   std::size_t inserted_when_stopping = 0;
+  std::optional<Pose2> held;
   for (int k = 20; k < 60; ++k) {
     LaserScan s = simulate(w, Pose2(1.9, 0, 0), 0.1 * k);
     s.odometry = Pose2(1.9, 0, 0);
     const SlamStep step = slam.process(s);
-    EXPECT_TRUE(step.matched);
-    if (k == 25) inserted_when_stopping = slam.scans_inserted();
+    // The last driving scan (k = 19) was at 1.9 already: scans 20-23 repeat
+    // its reading 1-4 times and still match (odometry may merely have
+    // stalled); from the 5th repeat on the pose is held.
+    EXPECT_EQ(step.still, k >= 24) << k;
+    EXPECT_EQ(step.matched, k < 24) << k;
+    if (k == 24) {
+      inserted_when_stopping = slam.scans_inserted();
+      held = step.pose;
+    }
+    if (held) {
+      EXPECT_EQ(step.pose.x, held->x);
+      EXPECT_EQ(step.pose.theta, held->theta);
+    }
   }
   EXPECT_GT(inserted_when_stopping, 0u);
   EXPECT_EQ(slam.scans_inserted(), inserted_when_stopping);  // nothing added while still
+  EXPECT_EQ(slam.scans_held(), 36u);
   EXPECT_NEAR(slam.pose().x, 1.9, 0.05);
-  // Moving again resumes insertion.
+  // Moving again resumes matching and insertion.
   LaserScan s = simulate(w, Pose2(2.0, 0, 0), 6.0);
   s.odometry = Pose2(2.0, 0, 0);
-  slam.process(s);
+  const SlamStep moving = slam.process(s);
+  EXPECT_TRUE(moving.matched);
+  EXPECT_NEAR(moving.pose.x, 2.0, 0.05);
   EXPECT_EQ(slam.scans_inserted(), inserted_when_stopping + 1);
 }
 
