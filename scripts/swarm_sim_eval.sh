@@ -26,7 +26,7 @@ python3 - "$out" "$first" "$last" <<'PY'
 import json, os, statistics, sys
 out, first, last = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 acc = tot = wrong = wrong_local = wrong_aligned = 0
-errs = {"error": [], "aligned_error": [], "frame_error": []}
+errs = {"error": [], "causal_error": [], "aligned_error": [], "frame_error": []}
 cover, ate, match_ms, merge_ms, nbytes, rss, failed = [], [], [], [], [], [], []
 for s in range(first, last + 1):
     d = os.path.join(out, f"seed{s}")
@@ -40,7 +40,8 @@ for s in range(first, last + 1):
         match_ms.append(e["match_ms"]); nbytes.append(e["bytes"])
         if not e["accepted"]: continue
         acc += 1; merge_ms.append(e["merge_ms"])
-        for k in errs: errs[k].append((e[k][0], e[k][1], s, e["time"]))
+        for k in errs:
+            if k in e: errs[k].append((e[k][0], e[k][1], s, e["time"]))
         off = lambda k: e[k][0] > 0.3 or e[k][1] > 3.0
         if off("error") and off("aligned_error"): wrong += 1
         wrong_local += off("error"); wrong_aligned += off("aligned_error")

@@ -47,21 +47,16 @@ Pose2 truth_at(const Trajectory& truth, double t) {
   return best->pose;
 }
 
-// How agent `track`'s map frame sits in the world *around* `place` as of log
-// time `until`: the least-squares alignment of its poses up to then whose
-// true position lies within `radius` of `place` (those poses built the map
-// there). Nullopt with fewer than 10 such poses.
-std::optional<Pose2> local_alignment(const AgentTrack& track, const Trajectory& truth, const Eigen::Vector2d& place,
-                                     double until, double radius) {
-  Trajectory near, near_truth;
-  for (std::size_t i = 0; i < track.steps.size() && track.timestamps[i] <= until; ++i) {
-    const Pose2 t = truth_at(truth, track.timestamps[i]);
-    if ((t.translation() - place).norm() > radius) continue;
-    near.push_back({track.timestamps[i], track.steps[i].pose});
-    near_truth.push_back({track.timestamps[i], t});
-  }
-  if (near.size() < 10) return std::nullopt;
-  return evaluate_ate(near, near_truth).alignment;
+// How agent `track`'s map frame sat in the world at log time `until`: the
+// least-squares alignment of its poses up to then (what its map held then;
+// later drift cannot be held against an earlier encounter). Nullopt with
+// fewer than 2 poses.
+std::optional<Pose2> alignment_until(const AgentTrack& track, const Trajectory& truth, double until) {
+  Trajectory so_far;
+  for (std::size_t i = 0; i < track.steps.size() && track.timestamps[i] <= until; ++i)
+    so_far.push_back({track.timestamps[i], track.steps[i].pose});
+  if (so_far.size() < 2) return std::nullopt;
+  return evaluate_ate(so_far, truth).alignment;
 }
 
 // Cells (on a 0.1 m world lattice) where `grid` holds evidence, placed in the
@@ -185,6 +180,9 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     j["name"] = a.name();
     j["scans"] = own.size();
     j["scans_matched"] = a.slam().scans_matched();
+    j["scans_held"] = a.slam().scans_held();
+    j["matches_rejected"] = a.slam().matches_rejected();
+    j["recovery_searches"] = a.slam().recoveries();
     j["knows"] = nlohmann::json::array();
     for (const MapLayer& l : a.knowledge().layers())
       j["knows"].push_back({{"origin", l.origin}, {"version", l.version}, {"hops", l.hops},
@@ -264,6 +262,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       //  frame_error:   the frames as they were at each robot's start;
       //  aligned_error: each map frame as its whole trajectory best fits the
       //                 truth (the ATE alignment) — drift averaged out;
+      //  causal_error:  the same with each trajectory only up to the
+      //                 encounter — the maps as they were when merged;
       //  error:         as each robot's current pose says (local truth).
       auto transform_error = [&](const Pose2& truth_transform) {
         const Pose2 d = between(truth_transform * r.b_pose_in_b, est * r.b_pose_in_b);
@@ -271,12 +271,9 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       };
       e["frame_error"] = transform_error(true_transform);
       e["aligned_error"] = transform_error(alignments[ia].inverse() * alignments[ib]);
-      // The maps as they lie where the robots met: each frame aligned by its
-      // poses within 8 m of B (those built the map the placement used).
-      const Eigen::Vector2d meeting = truth_at(tb, r.b_log_time).translation();
-      const auto la = local_alignment(s.track(ia), ta, meeting, r.a_log_time, 8.0);
-      const auto lb = local_alignment(s.track(ib), tb, meeting, r.b_log_time, 8.0);
-      if (la && lb) e["local_error"] = transform_error(la->inverse() * *lb);
+      const auto ca = alignment_until(s.track(ia), ta, r.a_log_time);
+      const auto cb = alignment_until(s.track(ib), tb, r.b_log_time);
+      if (ca && cb) e["causal_error"] = transform_error(ca->inverse() * *cb);
       // Where the transform was measured: the relative pose of the two robots.
       const Pose2 true_rel = between(truth_at(ta, r.a_log_time), truth_at(tb, r.b_log_time));
       const Pose2 est_rel = r.a_pose_in_a.inverse() * est * r.b_pose_in_b;
