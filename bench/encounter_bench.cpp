@@ -95,11 +95,14 @@ int main(int argc, char** argv) {
       break;
     }
   RelativePoseConfig rc;
-  EncounterView va{&a, scan_to_points(simulate_scan(world, a_world, lidar(), rng)), frame_a.inverse() * a_world, {}};
+  EncounterView va{&a, scan_to_points(simulate_scan(world, a_world, lidar(), rng)), frame_a.inverse() * a_world, {},
+                   {}};
   EncounterView vb{received.layers[0].map.get(), scan_to_points(simulate_scan(world, b_world, lidar(), rng)),
-                   frame_b.inverse() * b_world, {}};
+                   frame_b.inverse() * b_world, {}, {}};
   va.surroundings = surroundings_points(a, va.pose, rc.surroundings_radius, rc.surroundings_points);
   vb.surroundings = surroundings_points(b, vb.pose, rc.surroundings_radius, rc.surroundings_points);
+  va.wide_surroundings = surroundings_points(a, va.pose, rc.merge_surroundings_radius, rc.merge_surroundings_points);
+  vb.wide_surroundings = surroundings_points(b, vb.pose, rc.merge_surroundings_radius, rc.merge_surroundings_points);
   t0 = Clock::now();
   const EncounterEstimate e = estimate_encounter(va, vb, EncounterConfig{}, 7);
   const double match_ms = ms_since(t0);

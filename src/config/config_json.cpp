@@ -149,6 +149,8 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"candidates", DSS_SWARM_FIELD(int, encounter.locate.candidates)},
         {"surroundings_radius", DSS_SWARM_FIELD(double, encounter.locate.surroundings_radius)},
         {"surroundings_points", DSS_SWARM_FIELD(int, encounter.locate.surroundings_points)},
+        {"merge_surroundings_radius", DSS_SWARM_FIELD(double, encounter.locate.merge_surroundings_radius)},
+        {"merge_surroundings_points", DSS_SWARM_FIELD(int, encounter.locate.merge_surroundings_points)},
         {"mode_separation_xy", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_xy)},
         {"mode_separation_theta", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_theta)},
         {"refine_evaluations", DSS_SWARM_FIELD(int, encounter.locate.refine.evaluations)},

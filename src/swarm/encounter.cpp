@@ -74,9 +74,23 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
     return e;
   }
   // Accepted: the mean of the two estimates of B's pose, expressed as a frame transform.
-  const Pose2 b_mean = interpolate(b_by_a, b_by_b, 0.5);
-  e.b_frame_in_a = b_mean * b.pose.inverse();
+  e.b_frame_in_a = e.b_frame_in_a_near = interpolate(b_by_a, b_by_b, 0.5) * b.pose.inverse();
   e.accepted = true;
+  if (a.wide_surroundings.empty() || b.wide_surroundings.empty()) return e;
+  // The merge lines up whole maps, not one scan: refine both placements with
+  // each robot's obstacles out to merge_surroundings_radius and take the mean
+  // again. Verification above judged the near placements; the wide fit moves
+  // them by centimetres (a large move means the maps disagree with each
+  // other, and the near estimate stands).
+  const Pose2 b_wide = refine_placement(*a.map, b.points, b.wide_surroundings, b_by_a, config.locate, seed + 2).pose;
+  const Pose2 a_in_b = e.b_locates_a.best.pose;
+  const Pose2 a_wide = refine_placement(*b.map, a.points, a.wide_surroundings, a_in_b, config.locate, seed + 3).pose;
+  const Pose2 from_a_wide = b_wide * b.pose.inverse();
+  const Pose2 from_b_wide = (a_wide * a.pose.inverse()).inverse();
+  const Pose2 wide = interpolate(from_a_wide * b.pose, from_b_wide * b.pose, 0.5) * b.pose.inverse();
+  const Pose2 moved = between(e.b_frame_in_a * b.pose, wide * b.pose);
+  if (std::hypot(moved.x, moved.y) <= config.agree_xy && std::abs(moved.theta) <= config.agree_theta)
+    e.b_frame_in_a = wide;
   return e;
 }
 

@@ -39,12 +39,15 @@ struct EncounterView {
   // the other side could cut them from the snapshot it receives; sent
   // ready-made they cost no more than the scan.
   std::vector<ScanPoint> surroundings;
+  // The same out to merge_surroundings_radius, for the final transform.
+  std::vector<ScanPoint> wide_surroundings;
 };
 
 struct EncounterEstimate {
   bool accepted = false;
   std::string reason;      // why it was rejected ("" when accepted)
   Pose2 b_frame_in_a;      // pose of B's map frame in A's map frame (valid when accepted)
+  Pose2 b_frame_in_a_near; // the same from the placements before the wide refinement
   RelativePoseResult a_locates_b;  // B's robot placed in A's map
   RelativePoseResult b_locates_a;  // A's robot placed in B's map
   double disagreement_xy = 0.0;    // m, between the two directions' placements of B

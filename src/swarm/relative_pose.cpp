@@ -19,6 +19,9 @@ void RelativePoseConfig::validate() const {
   if (!(surroundings_radius >= 0.0 && surroundings_radius <= 100.0))
     throw ConfigError("encounter.surroundings_radius must be in [0, 100] m");
   if (surroundings_points < 0) throw ConfigError("encounter.surroundings_points must be >= 0");
+  if (!(merge_surroundings_radius >= 0.0 && merge_surroundings_radius <= 100.0))
+    throw ConfigError("encounter.merge_surroundings_radius must be in [0, 100] m");
+  if (merge_surroundings_points < 0) throw ConfigError("encounter.merge_surroundings_points must be >= 0");
   if (!(mode_separation_xy > 0.0) || !(mode_separation_theta > 0.0))
     throw ConfigError("encounter.mode_separation_xy and mode_separation_theta must be > 0");
   refine.validate();
@@ -117,6 +120,18 @@ double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points,
   return inliers > 0.0 ? same_side / inliers : 0.0;
 }
 
+MatchResult refine_placement(const MultiResMap& map, const std::vector<ScanPoint>& points,
+                       const std::vector<ScanPoint>& surroundings, const Pose2& start, const RelativePoseConfig& config,
+                       std::uint64_t seed) {
+  std::vector<ScanPoint> both = points;
+  both.insert(both.end(), surroundings.begin(), surroundings.end());
+  MatcherConfig fine = config.refine;
+  fine.sigma_xy = 0.03;
+  fine.sigma_theta = 0.01;
+  MonteCarloMatcher polisher(fine, seed);
+  return polisher.match(map, both, start);
+}
+
 std::vector<ScanPoint> surroundings_points(const MultiResMap& map, const Pose2& robot_pose, double radius,
                                            int max_points) {
   const DsGrid& grid = map.finest();
@@ -168,17 +183,12 @@ RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoi
   if (refined.empty()) return result;
   if (!surroundings.empty()) {
     // Final placement: the scan and the surroundings together.
-    std::vector<ScanPoint> both = points;
-    both.insert(both.end(), surroundings.begin(), surroundings.end());
-    MatcherConfig fine = config.refine;
-    fine.sigma_xy = 0.03;
-    fine.sigma_theta = 0.01;
-    MonteCarloMatcher polisher(fine, seed + 1);
-    const MatchResult m = polisher.match(map, both, refined.front().pose);
+    const MatchResult m = refine_placement(map, points, surroundings, refined.front().pose, config, seed + 1);
     result.evaluations += m.evaluations;
-    refined.front().pose = m.pose;
-    refined.front().score = score_pose(map.finest(), points, m.pose);
-    refined.front().surroundings_score = evidence_agreement(map.finest(), surroundings, m.pose);
+    const Pose2 pose = m.pose;
+    refined.front().pose = pose;
+    refined.front().score = score_pose(map.finest(), points, pose);
+    refined.front().surroundings_score = evidence_agreement(map.finest(), surroundings, pose);
   }
   for (PoseHypothesis& h : refined) {
     const MatchQuality q = match_quality(map.finest(), points, h.pose);

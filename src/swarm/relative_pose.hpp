@@ -35,6 +35,16 @@ struct RelativePoseConfig {
   int candidates = 32;               // coarse modes refined
   double surroundings_radius = 8.0;  // m around the foreign robot (step 3)
   int surroundings_points = 2000;    // at most this many obstacle cells
+  // Once a placement is accepted, the transform the maps are merged with is
+  // refined against the foreign robot's obstacles this far around it, thinned
+  // to at most this many (refine_placement): a map that drifted fits one scan
+  // and its near surroundings in a slightly turned pose; the wide fit is what
+  // lines the two maps up as wholes. Measured on 20 simulated 3-robot runs
+  // (transform error against the frames as the maps stood, README): 8 m as
+  // for ranking left 8 of 231 merges outside 0.05 m / 0.5 degrees, 15 m 4 of
+  // 220, 25 m 2 of 226, 40 m none of 222. 0 disables.
+  double merge_surroundings_radius = 40.0;  // m
+  int merge_surroundings_points = 8000;
   // Two placements are distinct modes when this far apart (either way).
   double mode_separation_xy = 0.5;      // m
   double mode_separation_theta = 0.26;  // rad (15°)
@@ -72,6 +82,13 @@ struct RelativePoseResult {
 RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoint>& points,
                                const Eigen::Vector2d& near, const RelativePoseConfig& config, std::uint64_t seed,
                                const std::vector<ScanPoint>& surroundings = {});
+
+// Polishes an accepted placement `start` of the foreign robot in `map` with
+// its scan and `surroundings` together (obstacle cells of its map, its base
+// frame), by the fine Monte-Carlo search locate_scan ends with.
+MatchResult refine_placement(const MultiResMap& map, const std::vector<ScanPoint>& points,
+                       const std::vector<ScanPoint>& surroundings, const Pose2& start, const RelativePoseConfig& config,
+                       std::uint64_t seed);
 
 // Obstacle cells (occupied mass ≥ 0.5) of `map`'s finest level within
 // `radius` of `robot_pose`, as points in the robot's base frame, thinned

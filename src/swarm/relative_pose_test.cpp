@@ -53,10 +53,12 @@ TwoRobots meet(const World& world, const Pose2& a_start, const Pose2& b_start, c
   };
   t.map_a = test::map_from(world, drive(a_start, a_world), a_start, rng);
   t.map_b = test::map_from(world, drive(b_start, b_world), b_start, rng);
-  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world, {}};
+  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world, {}, {}};
   t.a.surroundings = surroundings_points(t.map_a, t.a.pose, 8.0, 2000);
-  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world, {}};
+  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world, {}, {}};
   t.b.surroundings = surroundings_points(t.map_b, t.b.pose, 8.0, 2000);
+  t.a.wide_surroundings = surroundings_points(t.map_a, t.a.pose, 40.0, 8000);
+  t.b.wide_surroundings = surroundings_points(t.map_b, t.b.pose, 40.0, 8000);
   t.b_frame_in_a = a_start.inverse() * b_start;
   return t;
 }
@@ -71,6 +73,39 @@ TEST(Encounter, AcceptsAndRecoversTheTransformBetweenFrames) {
   EXPECT_NEAR(e.b_frame_in_a.y, t.b_frame_in_a.y, 0.05);
   EXPECT_NEAR(normalize_angle(e.b_frame_in_a.theta - t.b_frame_in_a.theta), 0.0, 0.5 * kDeg);
   EXPECT_LT(e.disagreement_xy, 0.1);
+}
+
+TEST(RelativePose, RefinePlacementPullsAnOffsetPlacementOntoTheMap) {
+  const World world = test::l_shaped_office();
+  Rng rng(3);
+  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  const Pose2 truth = t.b_frame_in_a * t.b.pose;  // B's base pose in A's map
+  const Pose2 start = truth * Pose2(0.04, -0.03, 0.6 * kDeg);
+  const MatchResult m = refine_placement(t.map_a, t.b.points, t.b.wide_surroundings, start, RelativePoseConfig{}, 9);
+  const Pose2 d = between(truth, m.pose);
+  EXPECT_LT(std::hypot(d.x, d.y), 0.015);
+  EXPECT_LT(std::abs(d.theta), 0.15 * kDeg);
+  EXPECT_GT(m.evaluations, 0);
+}
+
+TEST(Encounter, TheMergeTransformIsRefinedAgainstTheWideSurroundings) {
+  const World world = test::l_shaped_office();
+  Rng rng(2);
+  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  auto error_at_b = [&](const Pose2& transform) {
+    const Pose2 d = between(t.b_frame_in_a * t.b.pose, transform * t.b.pose);
+    return std::hypot(d.x, d.y) + std::abs(d.theta);  // metres + radians: both small here
+  };
+  const EncounterEstimate wide = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  ASSERT_TRUE(wide.accepted) << wide.reason;
+  EXPECT_LE(error_at_b(wide.b_frame_in_a), error_at_b(wide.b_frame_in_a_near) + 0.005);
+  EXPECT_LT(error_at_b(wide.b_frame_in_a), 0.03);
+  // Without wide surroundings the near estimate is the answer.
+  t.a.wide_surroundings.clear();
+  const EncounterEstimate near = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  ASSERT_TRUE(near.accepted) << near.reason;
+  EXPECT_EQ(near.b_frame_in_a.x, near.b_frame_in_a_near.x);
+  EXPECT_EQ(near.b_frame_in_a.theta, near.b_frame_in_a_near.theta);
 }
 
 TEST(Encounter, RejectsALongFeaturelessCorridor) {

@@ -19,6 +19,9 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
   v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
                                         config.surroundings_points);
+  if (config.merge_surroundings_radius > 0.0)
+    v.wide_surroundings = surroundings_points(slam_.own_map(), v.pose, config.merge_surroundings_radius,
+                                              config.merge_surroundings_points);
   return v;
 }
 

@@ -95,7 +95,8 @@ void SwarmSession::encounter(const EncounterEvent& e) {
   r.b_pose_in_b = view_b.pose;
   // x, y per point, both ways: scans and surroundings.
   r.bytes = 2 * sizeof(float) *
-            (view_a.points.size() + view_b.points.size() + view_a.surroundings.size() + view_b.surroundings.size());
+            (view_a.points.size() + view_b.points.size() + view_a.surroundings.size() + view_b.surroundings.size() +
+             view_a.wide_surroundings.size() + view_b.wide_surroundings.size());
   if (transport_) {
     from_a = transport_(from_a, r.bytes);
     from_b = transport_(from_b, r.bytes);
