@@ -96,7 +96,28 @@ SlamStep Slam::process(const LaserScan& scan) {
   step.prior = first ? pose_ : predict(scan);
   ++processed_;
 
-  if (note_standing_still(scan) && !first) {
+  const bool standing_still = note_standing_still(scan) && !first;
+
+  if (config_.use_filter) {
+    // Timed here because the filter's cost is part of the price of a scan.
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool keep = filter_.decide(scan).keep;
+    filter_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!keep && !first) {
+      // Redundant: the pose follows the motion prediction (odometry from the
+      // last matched pose; held when standing still), and nothing enters the map.
+      step.pose = standing_still ? pose_ : step.prior;
+      step.dropped = true;
+      if (config_.revise_dropped) {  // at most filter.max_consecutive_drops long
+        if (gap_.empty()) gap_start_ = pose_;
+        gap_.push_back({step.index, step.pose});
+      }
+      advance(scan, step.pose);
+      return step;
+    }
+  }
+
+  if (standing_still) {
     // Parked: hold the pose. Matching the same view over and over only lets
     // the pose random-walk (a constant-velocity prior keeps any creep going;
     // simulated robots waiting at a rendezvous crept 0.25 m and 1.3° in 80 s),
@@ -108,25 +129,6 @@ SlamStep Slam::process(const LaserScan& scan) {
     gap_.clear();
     advance(scan, step.pose);
     return step;
-  }
-
-  if (config_.use_filter) {
-    // Timed here because the filter's cost is part of the price of a scan.
-    const auto t0 = std::chrono::steady_clock::now();
-    const bool keep = filter_.decide(scan).keep;
-    filter_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!keep && !first) {
-      // Redundant: the pose follows the motion prediction (odometry from the
-      // last matched pose), and nothing enters the map.
-      step.pose = step.prior;
-      step.dropped = true;
-      if (config_.revise_dropped) {  // at most filter.max_consecutive_drops long
-        if (gap_.empty()) gap_start_ = pose_;
-        gap_.push_back({step.index, step.pose});
-      }
-      advance(scan, step.pose);
-      return step;
-    }
   }
 
   const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
