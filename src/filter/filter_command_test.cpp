@@ -94,6 +94,23 @@ TEST(FilterCommand, WritesKeptScansDecisionsAndJsonSummary) {
   EXPECT_EQ(rows, 40);
 }
 
+TEST(FilterCommand, PlotIsAPngOfTheDecisionsOverTime) {
+  const fs::path dir = fresh_dir("filter_cli_plot");
+  const fs::path log = write_standing_log(dir);
+  run_cli({"filter", log.string(), "--out", (dir / "kept.log").string(), "--plot", (dir / "plot.png").string()});
+  std::ifstream png(dir / "plot.png", std::ios::binary);
+  std::string head(24, '\0');
+  ASSERT_TRUE(png.read(head.data(), 24));
+  EXPECT_EQ(head.substr(1, 3), "PNG");
+  // IHDR: width and height, big-endian, at bytes 16 and 20.
+  auto be32 = [&](int at) {
+    return (static_cast<unsigned char>(head[at]) << 24) | (static_cast<unsigned char>(head[at + 1]) << 16) |
+           (static_cast<unsigned char>(head[at + 2]) << 8) | static_cast<unsigned char>(head[at + 3]);
+  };
+  EXPECT_EQ(be32(16), 1600);
+  EXPECT_EQ(be32(20), 430);
+}
+
 TEST(FilterCommand, OptionsReachTheFilter) {
   const fs::path dir = fresh_dir("filter_cli_options");
   const fs::path log = write_standing_log(dir);
