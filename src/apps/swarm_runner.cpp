@@ -217,6 +217,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   nlohmann::json list = nlohmann::json::array();
   std::size_t accepted = 0;
   double match_ms = 0.0, merge_ms = 0.0, bytes = 0.0, worst_xy = 0.0, worst_theta = 0.0;
+  double worst_causal_xy = 0.0, worst_causal_theta = 0.0;
   std::size_t wrong = 0;
   for (const EncounterRecord& r : s.encounters()) {
     nlohmann::json e;
@@ -289,6 +290,10 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       if (r.accepted) {
         worst_xy = std::max(worst_xy, exy);
         worst_theta = std::max(worst_theta, eth);
+        if (e.contains("causal_error")) {
+          worst_causal_xy = std::max(worst_causal_xy, e["causal_error"][0].get<double>());
+          worst_causal_theta = std::max(worst_causal_theta, e["causal_error"][1].get<double>());
+        }
         // Wrong under every reference: a robot whose own SLAM slipped makes
         // one reference disagree even with a well-placed map, never both.
         const auto& al = e["aligned_error"];
@@ -322,6 +327,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   stats["config"] = to_json(s.config());
   if (truth) {
     stats["worst_accepted_error"] = {worst_xy, worst_theta};
+    stats["worst_accepted_causal_error"] = {worst_causal_xy, worst_causal_theta};
     stats["wrong_merges"] = wrong;
   }
   write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");

@@ -19,7 +19,7 @@
 namespace dsswarm {
 
 // A building sized for `robots` robots: for up to 3 the default building
-// with one more pair of rooms (37.5 x 20 m, 10 rooms, one corridor); for more,
+// (30 x 20 m, 8 rooms, one corridor within the lidar's 30 m); for more,
 // about 2 rooms per robot and a corridor per 4 robots (joined by a spine),
 // with 3 m corridors so that up to 9 robots park within 3 m of each other.
 // Throws ConfigError when robots is outside [1, 64].
