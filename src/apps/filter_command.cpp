@@ -199,7 +199,7 @@ void add_filter_command(CLI::App& app) {
   cmd->add_option("--scan-topic", args->scan_topic, "ROS bag: sensor_msgs/LaserScan topic")->capture_default_str();
   cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
   cmd->add_flag("--no-odometry", args->no_odometry, "Ignore odometry: fixed window, no motion valve");
-  cmd->add_option("--columns", c.columns, "Histogram columns B (0 = clamp(round(30 n/1000), 10, 30) for n beams)")
+  cmd->add_option("--columns", c.columns, "Histogram columns B (0 = clamp(round(15 n/1000), 6, 30) for n beams)")
       ->capture_default_str();
   cmd->add_option("--statistic", args->statistic, "Column value for sector binning")
       ->check(CLI::IsMember({"median", "mean"}))

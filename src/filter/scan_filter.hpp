@@ -70,7 +70,7 @@ struct ScanFilterConfig {
   // revised after the next match (SlamConfig::revise_dropped); what the caps
   // guard against is losing track. Measured over 5-20 seeds (README, "Scan
   // filter"): at 0.6 m mit-csail (19 cm per scan) drops up to 3 in a row at
-  // 1.11x its filter-off error; 0.35 m capped it at ~30% drops. On intel (4 cm
+  // 1.09x its filter-off error; 0.35 m capped it at 34% drops. On intel (4 cm
   // per scan) runs of 10 drops let its heading drift apart from the filter-off
   // runs on 7 of 20 seeds, runs of 5 on 3 of 20, as often as filter-off
   // runs differ among themselves.
