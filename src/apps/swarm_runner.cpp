@@ -226,6 +226,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     e["log_times"] = {r.a_log_time, r.b_log_time};
     e["poses"] = {pose_json(r.a_pose_in_a), pose_json(r.b_pose_in_b)};
     e["transform"] = pose_json(r.accepted ? r.b_frame_in_a : r.estimate.a_locates_b.best.pose * r.b_pose_in_b.inverse());
+    // Before the wide refinement (same as `transform` when it did not apply).
+    if (r.estimate.accepted) e["transform_near"] = pose_json(r.estimate.b_frame_in_a_near);
     e["accepted"] = r.accepted;
     e["reason"] = r.reason;
     e["confirmed_by"] = r.confirmed_by;
