@@ -234,7 +234,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     e["match_ms"] = r.match_ms;
     e["merge_ms"] = r.merge_ms;
     e["bytes"] = r.bytes;
-    e["disagreement"] = {r.estimate.disagreement_xy, r.estimate.disagreement_theta};
+    e["disagreement"] = {r.estimate.disagreement_xy, r.estimate.disagreement_theta * kRadToDeg};
+    e["wide_moved"] = {r.estimate.wide_moved_xy, r.estimate.wide_moved_theta * kRadToDeg};
     // Each side's placement of the other robot in its own map.
     e["placements"] = {pose_json(r.estimate.a_locates_b.best.pose), pose_json(r.estimate.b_locates_a.best.pose)};
     e["scores"] = {r.estimate.a_locates_b.best.score, r.estimate.b_locates_a.best.score};

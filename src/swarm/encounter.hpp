@@ -5,9 +5,10 @@
 // Each robot places the other's current scan in its own map (relative_pose),
 // giving two independent estimates of the same transform. It is accepted only
 // when (1) each placement lands mostly on mapped space and fits it, (2) each
-// placement clearly beats the best alternative placement, and (3) the two
-// directions agree. A wrong merge corrupts a map for good; a rejected one
-// costs only a wait for the next encounter.
+// placement clearly beats the best alternative placement, (3) the two
+// directions agree, and (4) fitting both maps as wholes (the wide refinement)
+// keeps the transform within that same tolerance. A wrong merge corrupts a map
+// for good; a rejected one costs only a wait for the next encounter.
 #include <string>
 #include <vector>
 
@@ -52,6 +53,10 @@ struct EncounterEstimate {
   RelativePoseResult b_locates_a;  // A's robot placed in B's map
   double disagreement_xy = 0.0;    // m, between the two directions' placements of B
   double disagreement_theta = 0.0; // rad
+  // How far the wide refinement moved the accepted estimate, at B's position;
+  // beyond agree_xy / agree_theta the encounter is rejected.
+  double wide_moved_xy = 0.0;     // m
+  double wide_moved_theta = 0.0;  // rad
 };
 
 EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView& b, const EncounterConfig& config,

@@ -108,6 +108,28 @@ TEST(Encounter, TheMergeTransformIsRefinedAgainstTheWideSurroundings) {
   EXPECT_EQ(near.b_frame_in_a.theta, near.b_frame_in_a_near.theta);
 }
 
+TEST(Encounter, RejectsWhenTheMapsAsWholesDisagreeWithTheMeetingPoint) {
+  const World world = test::l_shaped_office();
+  Rng rng(2);
+  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  const EncounterEstimate straight = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  ASSERT_TRUE(straight.accepted) << straight.reason;
+  EXPECT_LT(straight.wide_moved_xy, 0.03);
+  // B's map bent: everything it knows, seen from where it stands, turned by
+  // 4° and shifted 10 cm, while its current scan is straight.
+  const Pose2 bend{0.1, 0.0, 4.0 * kDeg};
+  for (ScanPoint& p : t.b.wide_surroundings) {
+    const Eigen::Vector2d q = bend * Eigen::Vector2d(p.x, p.y);
+    p.x = static_cast<float>(q.x());
+    p.y = static_cast<float>(q.y());
+  }
+  const EncounterEstimate bent = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  EXPECT_FALSE(bent.accepted);
+  EXPECT_NE(bent.reason.find("maps disagree"), std::string::npos) << bent.reason;
+  EXPECT_GT(std::max(bent.wide_moved_xy / EncounterConfig{}.agree_xy, bent.wide_moved_theta / EncounterConfig{}.agree_theta),
+            1.0);
+}
+
 TEST(Encounter, RejectsALongFeaturelessCorridor) {
   // 2 m wide, far longer than the lidar reaches: every position along it fits.
   const World world({{{-200, 0}, {200, 0}}, {{-200, 2}, {200, 2}}});
