@@ -32,6 +32,7 @@ TEST(ConfigJson, SwarmSectionsRoundTripAndSingleRobotsIgnoreThem) {
   c.encounter.locate.surroundings_radius = 12.0;
   c.confirm_theta = 0.01;
   c.confirm = false;
+  c.encounter.reject_bent_maps = true;
   const nlohmann::json j = to_json(c);
   EXPECT_EQ(j.at("encounter").at("agree_xy"), 0.03);
   EXPECT_EQ(j.at("swarm").at("confirm"), false);
@@ -40,6 +41,7 @@ TEST(ConfigJson, SwarmSectionsRoundTripAndSingleRobotsIgnoreThem) {
   EXPECT_EQ(to_json(d), j);
   EXPECT_DOUBLE_EQ(d.encounter.locate.surroundings_radius, 12.0);
   EXPECT_FALSE(d.confirm);
+  EXPECT_TRUE(d.encounter.reject_bent_maps);
   // A single robot reads the same file: its sections apply, the swarm's are
   // checked (a typo there is still an error) and otherwise ignored.
   SlamConfig single;

@@ -80,7 +80,9 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
   // The merge lines up whole maps, not one scan: refine both placements with
   // each robot's obstacles out to merge_surroundings_radius and take the mean
   // again. Verification above judged the near placements; the wide fit moves
-  // them by centimetres.
+  // them by centimetres. A larger move means the maps disagree with each other
+  // (bent between here and their far parts, or the wide fit latched onto the
+  // wrong part): the near estimate, right where the robots are, stands.
   const Pose2 b_wide = refine_placement(*a.map, b.points, b.wide_surroundings, b_by_a, config.locate, seed + 2).pose;
   const Pose2 a_in_b = e.b_locates_a.best.pose;
   const Pose2 a_wide = refine_placement(*b.map, a.points, a.wide_surroundings, a_in_b, config.locate, seed + 3).pose;
@@ -91,15 +93,13 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
   e.wide_moved_xy = std::hypot(moved.x, moved.y);
   e.wide_moved_theta = std::abs(normalize_angle(moved.theta));
   if (e.wide_moved_xy > config.agree_xy || e.wide_moved_theta > config.agree_theta) {
-    // Where the robots met and the maps as wholes call for transforms this
-    // far apart: at least one map is bent between here and its far parts, and
-    // either transform would misplace part of it (in simulation both were
-    // off by 6-8 cm about as often). Wait for a better moment.
-    e.accepted = false;
-    e.reason = fmt::format(
-        "the maps disagree with each other: fitting {:.0f} m of both maps moves the transform {:.2f} m / {:.1f}° "
-        "from the fit where the robots met",
-        config.locate.merge_surroundings_radius, e.wide_moved_xy, e.wide_moved_theta * 180.0 / std::numbers::pi);
+    if (config.reject_bent_maps) {
+      e.accepted = false;
+      e.reason = fmt::format(
+          "the maps disagree with each other: fitting {:.0f} m of both maps moves the transform {:.2f} m / {:.1f}° "
+          "from the fit where the robots met",
+          config.locate.merge_surroundings_radius, e.wide_moved_xy, e.wide_moved_theta * 180.0 / std::numbers::pi);
+    }
     return e;
   }
   e.b_frame_in_a = wide;

@@ -108,7 +108,7 @@ TEST(Encounter, TheMergeTransformIsRefinedAgainstTheWideSurroundings) {
   EXPECT_EQ(near.b_frame_in_a.theta, near.b_frame_in_a_near.theta);
 }
 
-TEST(Encounter, RejectsWhenTheMapsAsWholesDisagreeWithTheMeetingPoint) {
+TEST(Encounter, KeepsTheMeetingPointEstimateOrRejectsWhenTheMapsAsWholesDisagree) {
   const World world = test::l_shaped_office();
   Rng rng(2);
   TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
@@ -123,11 +123,19 @@ TEST(Encounter, RejectsWhenTheMapsAsWholesDisagreeWithTheMeetingPoint) {
     p.x = static_cast<float>(q.x());
     p.y = static_cast<float>(q.y());
   }
-  const EncounterEstimate bent = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  // By default the estimate where the robots met stands.
+  const EncounterEstimate kept = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
+  ASSERT_TRUE(kept.accepted) << kept.reason;
+  EXPECT_GT(std::max(kept.wide_moved_xy / EncounterConfig{}.agree_xy, kept.wide_moved_theta / EncounterConfig{}.agree_theta),
+            1.0);
+  EXPECT_EQ(kept.b_frame_in_a.x, kept.b_frame_in_a_near.x);
+  EXPECT_EQ(kept.b_frame_in_a.theta, kept.b_frame_in_a_near.theta);
+  // With reject_bent_maps the pair waits for a better encounter.
+  EncounterConfig strict;
+  strict.reject_bent_maps = true;
+  const EncounterEstimate bent = estimate_encounter(t.a, t.b, strict, 5);
   EXPECT_FALSE(bent.accepted);
   EXPECT_NE(bent.reason.find("maps disagree"), std::string::npos) << bent.reason;
-  EXPECT_GT(std::max(bent.wide_moved_xy / EncounterConfig{}.agree_xy, bent.wide_moved_theta / EncounterConfig{}.agree_theta),
-            1.0);
 }
 
 TEST(Encounter, RejectsALongFeaturelessCorridor) {
