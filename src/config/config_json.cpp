@@ -100,6 +100,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
        {{"resolution", DSS_FIELD(double, map.resolution)},
         {"levels", DSS_FIELD(int, map.levels)},
         {"free_space_on_coarse_levels", DSS_FIELD(bool, map.free_space_on_coarse_levels)},
+        {"free_margin_cells", DSS_FIELD(double, map.free_margin_cells)},
         {"splat_fine_hits", DSS_FIELD(bool, map.splat_fine_hits)},
         {"surface_gap", DSS_FIELD(double, map.surface_gap)},
         {"surface_mass_factor", DSS_FIELD(float, map.surface_mass_factor)},

@@ -9,6 +9,8 @@ namespace dsswarm {
 void MapConfig::validate() const {
   if (!(resolution >= 0.005 && resolution <= 2.0)) throw ConfigError("map.resolution must be in [0.005, 2] m");
   if (levels < 1 || levels > 6) throw ConfigError("map.levels must be in [1, 6]");
+  if (!(free_margin_cells >= 0.0 && free_margin_cells <= 10.0))
+    throw ConfigError("map.free_margin_cells must be in [0, 10]");
   evidence.validate();
 }
 
@@ -35,11 +37,22 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
     // Coarse levels take hits only: a 20 cm cell holding a wall is also
     // crossed by grazing beams, and free evidence would erode the very cells
     // that guide the coarse search (see MapConfig::free_space_on_coarse_levels).
-    if (level == 0 || config_.free_space_on_coarse_levels) for (const Eigen::Vector2d& h : hits) {
-      traverse_ray(origin, h, grid.resolution(), [&](CellIndex c) {
-        DsMass& m = grid.mutable_at(c);
-        m = ev.update(m, pass);
-      });
+    if (level == 0 || config_.free_space_on_coarse_levels) {
+      const double margin = config_.free_margin_cells * grid.resolution();
+      for (const Eigen::Vector2d& h : hits) {
+        const Eigen::Vector2d beam = h - origin;
+        const double length = beam.norm();
+        if (length <= margin) continue;
+        // traverse_ray leaves out the cell holding its end; the hit's own
+        // cell is left out too when the margin is under a cell.
+        const CellIndex hit_cell = grid.cell_of(h);
+        const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
+        traverse_ray(origin, end, grid.resolution(), [&](CellIndex c) {
+          if (c == hit_cell) return;
+          DsMass& m = grid.mutable_at(c);
+          m = ev.update(m, pass);
+        });
+      }
     }
     const bool splat = level > 0 || config_.splat_fine_hits;
     if (!splat && config_.surface_gap > 0.0) {
