@@ -43,12 +43,10 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
         const Eigen::Vector2d beam = h - origin;
         const double length = beam.norm();
         if (length <= margin) continue;
-        // traverse_ray leaves out the cell holding its end; the hit's own
-        // cell is left out too when the margin is under a cell.
-        const CellIndex hit_cell = grid.cell_of(h);
+        // traverse_ray leaves out the cell holding its end, so the hit's own
+        // cell never gets free evidence, whatever the margin.
         const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
         traverse_ray(origin, end, grid.resolution(), [&](CellIndex c) {
-          if (c == hit_cell) return;
           DsMass& m = grid.mutable_at(c);
           m = ev.update(m, pass);
         });

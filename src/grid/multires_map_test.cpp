@@ -46,32 +46,26 @@ TEST(MultiResMap, ScanIsPlacedByRobotPoseAndLaserOffset) {
 
 // map.free_margin_cells: free evidence stops that many cells short of the hit.
 TEST(MultiResMap, FreeMarginStopsFreeEvidenceShortOfTheHit) {
-  auto map_with_margin = [](double margin_cells) {
+  auto map_after_beam = [](double margin_cells, float hit_x) {
     MapConfig config{0.05, 1, {}, false, false};
     config.free_margin_cells = margin_cells;
     MultiResMap map(config);
-    map.insert_scan(Pose2(0.0, 0.012, 0.0), Pose2(), {{2.02f, 0.0f, 1.0f}});
+    map.insert_scan(Pose2(0.0, 0.012, 0.0), Pose2(), {{hit_x, 0.0f, 1.0f}});
     return map;
   };
   const float pass_free = EvidenceModel{}.pass_free;
-  const MultiResMap with = map_with_margin(1.0);
+  const MultiResMap with = map_after_beam(1.0, 2.02f);
   const DsGrid& g = with.finest();
   EXPECT_FLOAT_EQ(g.at(g.cell_of({1.99, 0.012})).unknown(), 1.0f);  // the cell just before the hit's
   EXPECT_NEAR(g.at(g.cell_of({1.94, 0.012})).free, pass_free, 1e-6);
   EXPECT_GT(g.at(g.cell_of({2.02, 0.012})).occupied, 0.0f);
   EXPECT_FLOAT_EQ(g.at(g.cell_of({2.02, 0.012})).free, 0.0f);
-  const MultiResMap without = map_with_margin(0.0);  // the default
+  const MultiResMap without = map_after_beam(0.0, 2.02f);  // the default
   EXPECT_NEAR(without.finest().at(g.cell_of({1.99, 0.012})).free, pass_free, 1e-6);
   EXPECT_FLOAT_EQ(without.finest().at(g.cell_of({2.02, 0.012})).free, 0.0f);
   // A hit closer than the margin adds no free evidence at all.
-  const MultiResMap close = [] {
-    MapConfig config{0.05, 1, {}, false, false};
-    config.free_margin_cells = 10.0;
-    MultiResMap map(config);
-    map.insert_scan(Pose2(), Pose2(), {{0.3f, 0.0f, 1.0f}});
-    return map;
-  }();
-  EXPECT_FLOAT_EQ(close.finest().at(close.finest().cell_of({0.1, 0.0})).unknown(), 1.0f);
+  const MultiResMap close = map_after_beam(10.0, 0.3f);
+  EXPECT_FLOAT_EQ(close.finest().at(g.cell_of({0.1, 0.012})).unknown(), 1.0f);
 }
 
 TEST(MultiResMap, RejectsBadConfig) {
