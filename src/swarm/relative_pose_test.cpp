@@ -63,10 +63,15 @@ TwoRobots meet(const World& world, const Pose2& a_start, const Pose2& b_start, c
   return t;
 }
 
+// The scene most tests share: two robots that started across the L-shaped
+// office meet in its long arm, 2 m apart, facing each other.
+TwoRobots meet_in_the_office(std::uint64_t seed) {
+  Rng rng(seed);
+  return meet(test::l_shaped_office(), {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+}
+
 TEST(Encounter, AcceptsAndRecoversTheTransformBetweenFrames) {
-  const World world = test::l_shaped_office();
-  Rng rng(2);
-  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  TwoRobots t = meet_in_the_office(2);
   const EncounterEstimate e = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
   ASSERT_TRUE(e.accepted) << e.reason;
   EXPECT_NEAR(e.b_frame_in_a.x, t.b_frame_in_a.x, 0.05);
@@ -76,9 +81,7 @@ TEST(Encounter, AcceptsAndRecoversTheTransformBetweenFrames) {
 }
 
 TEST(RelativePose, RefinePlacementPullsAnOffsetPlacementOntoTheMap) {
-  const World world = test::l_shaped_office();
-  Rng rng(3);
-  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  TwoRobots t = meet_in_the_office(3);
   const Pose2 truth = t.b_frame_in_a * t.b.pose;  // B's base pose in A's map
   const Pose2 start = truth * Pose2(0.04, -0.03, 0.6 * kDeg);
   const MatchResult m = refine_placement(t.map_a, t.b.points, t.b.wide_surroundings, start, RelativePoseConfig{}, 9);
@@ -89,9 +92,7 @@ TEST(RelativePose, RefinePlacementPullsAnOffsetPlacementOntoTheMap) {
 }
 
 TEST(Encounter, TheMergeTransformIsRefinedAgainstTheWideSurroundings) {
-  const World world = test::l_shaped_office();
-  Rng rng(2);
-  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  TwoRobots t = meet_in_the_office(2);
   auto error_at_b = [&](const Pose2& transform) {
     const Pose2 d = between(t.b_frame_in_a * t.b.pose, transform * t.b.pose);
     return std::hypot(d.x, d.y) + std::abs(d.theta);  // metres + radians: both small here
@@ -109,9 +110,7 @@ TEST(Encounter, TheMergeTransformIsRefinedAgainstTheWideSurroundings) {
 }
 
 TEST(Encounter, KeepsTheMeetingPointEstimateOrRejectsWhenTheMapsAsWholesDisagree) {
-  const World world = test::l_shaped_office();
-  Rng rng(2);
-  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  TwoRobots t = meet_in_the_office(2);
   const EncounterEstimate straight = estimate_encounter(t.a, t.b, EncounterConfig{}, 5);
   ASSERT_TRUE(straight.accepted) << straight.reason;
   EXPECT_LT(straight.wide_moved_xy, 0.03);
@@ -159,9 +158,7 @@ TEST(Encounter, RejectsASymmetricRoom) {
 }
 
 TEST(Encounter, RejectsWhenTheOtherRobotSeesUnmappedSpace) {
-  const World world = test::l_shaped_office();
-  Rng rng(8);
-  TwoRobots t = meet(world, {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  TwoRobots t = meet_in_the_office(8);
   const MultiResMap empty;
   t.a.map = &empty;
   EXPECT_FALSE(estimate_encounter(t.a, t.b, EncounterConfig{}, 5).accepted);
