@@ -56,16 +56,16 @@ namespace dsswarm {
 // believed more occupied than free. A correct match keeps most points on
 // walls; a wrong one puts them in space the map has seen to be free. Points
 // in unexplored space count for neither, so entering a new room is no failure.
-// Whether cell `c` or one of its 8 neighbours holds an obstacle: occupied mass
-// at least 0.15 and more than its free mass. The neighbourhood absorbs a
-// cell's worth of misplacement.
+// A cell that holds an obstacle: occupied mass at least 0.15 and more than
+// its free mass.
+inline bool is_obstacle(const DsMass& m) { return m.occupied >= 0.15f && m.occupied > m.free; }
+
+// Whether cell `c` or one of its 8 neighbours holds an obstacle. The
+// neighbourhood absorbs a cell's worth of misplacement.
 inline bool near_obstacle(const DsGrid& grid, CellIndex c) {
-  constexpr float kObstacle = 0.15f;
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      const DsMass m = grid.at({c.x + dx, c.y + dy});
-      if (m.occupied >= kObstacle && m.occupied > m.free) return true;
-    }
+    for (int dx = -1; dx <= 1; ++dx)
+      if (is_obstacle(grid.at({c.x + dx, c.y + dy}))) return true;
   return false;
 }
 

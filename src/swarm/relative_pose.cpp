@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "common/errors.hpp"
 #include "matching/scan_scorer.hpp"
@@ -103,19 +104,40 @@ std::vector<Pose2> distinct_best(std::vector<Coarse> all, int count, const Relat
 }  // namespace
 
 double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
-  constexpr float kSeenFree = 0.08f;   // two beams' worth of free evidence
-  constexpr double kApproach = 0.15;   // m before the hit: beyond the surface's own blur
+  constexpr float kSeenFree = 0.08f;     // two beams' worth of free evidence
+  constexpr double kApproach = 0.15;     // m before the hit: beyond the surface's own blur
+  // A grazing beam is still inside its wall's cells 15 cm before its hit, in
+  // cells the map has never seen free even when the placement is right. The
+  // approach point steps further back along the beam until it leaves the
+  // obstacle; a hit still inside one this far back does not vote.
+  constexpr double kMaxStepBack = 0.6;   // m along the beam
+  const double step = grid.resolution();
   const Eigen::Vector2d origin = pose.translation();
   double inliers = 0.0, same_side = 0.0;
   for (const ScanPoint& p : points) {
     const Eigen::Vector2d hit = pose * Eigen::Vector2d(p.x, p.y);
     if (!near_obstacle(grid, grid.cell_of(hit))) continue;
-    inliers += p.weight;
     const Eigen::Vector2d to_hit = hit - origin;
     const double range = to_hit.norm();
-    if (range <= kApproach) continue;
-    const DsMass before = grid.at(grid.cell_of(hit - to_hit * (kApproach / range)));
-    if (before.free >= kSeenFree && before.free > before.occupied) same_side += p.weight;
+    std::optional<CellIndex> before;
+    for (double back = kApproach; back <= std::min(kMaxStepBack, range); back += step) {
+      const CellIndex c = grid.cell_of(hit - to_hit * (back / range));
+      if (!is_obstacle(grid.at(c))) {
+        before = c;
+        break;
+      }
+    }
+    if (!before) continue;
+    inliers += p.weight;
+    // Far from every viewpoint the beams that crossed the space before a wall
+    // are sparser than the cells: seen free within a cell of the approach.
+    bool seen_free = false;
+    for (int dy = -1; dy <= 1 && !seen_free; ++dy)
+      for (int dx = -1; dx <= 1 && !seen_free; ++dx) {
+        const DsMass m = grid.at({before->x + dx, before->y + dy});
+        seen_free = m.free >= kSeenFree && m.free > m.occupied;
+      }
+    if (seen_free) same_side += p.weight;
   }
   return inliers > 0.0 ? same_side / inliers : 0.0;
 }

@@ -164,5 +164,33 @@ TEST(Encounter, RejectsWhenTheOtherRobotSeesUnmappedSpace) {
   EXPECT_FALSE(estimate_encounter(t.a, t.b, EncounterConfig{}, 5).accepted);
 }
 
+
+// The same-side check, at the true placement and across a thin wall. In a
+// corridor most hits meet their wall at a grazing angle; 15 cm back along
+// such a beam is still inside the wall's own cells, so the check steps back
+// until it is 15 cm off the surface (or leaves the hit out).
+TEST(SameSideRatio, HighAtTheTruePlacementInACorridor) {
+  const World corridor({{{-12, -1}, {12, -1}}, {{-12, 1}, {12, 1}}, {{-12, -1}, {-12, 1}}, {{12, -1}, {12, 1}}});
+  Rng rng(5);
+  const MultiResMap map = test::map_from(corridor, {{-4.0, 0.0, 0.0}, {-2.0, 0.1, 0.0}, {0.0, -0.1, 0.0},
+                                                    {2.0, 0.0, 0.0}, {4.0, 0.1, 0.0}}, Pose2{}, rng);
+  for (const Pose2 b : {Pose2{1.0, 0.3, 0.2}, Pose2{-3.0, -0.4, 2.5}, Pose2{3.3, 0.0, -1.2}})
+    EXPECT_GT(same_side_ratio(map.finest(), test::scan_at(corridor, b, rng), b), 0.9) << b.x;
+}
+
+TEST(SameSideRatio, LowForAScanThatMeetsAThinWallFromTheOtherSide) {
+  // A thin wall at y = 0 splits a room; A has only been in the upper half.
+  const World room({{{-5, -3}, {5, -3}}, {{5, -3}, {5, 3}}, {{5, 3}, {-5, 3}}, {{-5, 3}, {-5, -3}}, {{-5, 0}, {5, 0}}});
+  Rng rng(6);
+  const MultiResMap map =
+      test::map_from(room, {{-2.0, 1.5, 0.0}, {0.0, 1.5, 1.0}, {2.0, 1.5, 2.0}}, Pose2{}, rng);
+  // B stands below the wall; its hits on the wall land on A's wall cells.
+  for (const Pose2 b : {Pose2{0.0, -1.5, 0.0}, Pose2{-1.0, -0.8, 1.0}, Pose2{2.5, -2.0, -2.0}})
+    EXPECT_LT(same_side_ratio(map.finest(), test::scan_at(room, b, rng), b), 0.2) << b.x;
+  // The same place seen from above passes.
+  const Pose2 above{1.0, 0.8, 0.5};
+  EXPECT_GT(same_side_ratio(map.finest(), test::scan_at(room, above, rng), above), 0.9);
+}
+
 }  // namespace
 }  // namespace dsswarm
