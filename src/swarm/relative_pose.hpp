@@ -63,9 +63,9 @@ struct PoseHypothesis {
   double known_fraction = 0.0;
   // Of the scan points that land on obstacles, the weight share whose beam,
   // once clear of the obstacle (15 cm or more before the hit), runs through
-  // space the map has seen free: the obstacle was seen from the same side. A thin wall seen from opposite
-  // sides fits either way when shifted by its thickness, and only this
-  // tells the two apart (see same_side_ratio).
+  // space the map has seen free: the obstacle was seen from the same side.
+  // A thin wall seen from opposite sides fits either way when shifted by its
+  // thickness, and only this tells the two apart (see same_side_ratio).
   double same_side_ratio = 0.0;
 };
 

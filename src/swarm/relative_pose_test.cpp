@@ -164,11 +164,10 @@ TEST(Encounter, RejectsWhenTheOtherRobotSeesUnmappedSpace) {
   EXPECT_FALSE(estimate_encounter(t.a, t.b, EncounterConfig{}, 5).accepted);
 }
 
-
 // The same-side check, at the true placement and across a thin wall. In a
 // corridor most hits meet their wall at a grazing angle; 15 cm back along
 // such a beam is still inside the wall's own cells, so the check steps back
-// until it is 15 cm off the surface (or leaves the hit out).
+// until it is clear of them (or leaves the hit out).
 TEST(SameSideRatio, HighAtTheTruePlacementInACorridor) {
   const World corridor({{{-12, -1}, {12, -1}}, {{-12, 1}, {12, 1}}, {{-12, -1}, {-12, 1}}, {{12, -1}, {12, 1}}});
   Rng rng(5);
