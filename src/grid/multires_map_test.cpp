@@ -60,7 +60,7 @@ TEST(MultiResMap, FreeMarginStopsFreeEvidenceShortOfTheHit) {
   EXPECT_NEAR(g.at(g.cell_of({1.94, 0.012})).free, pass_free, 1e-6);
   EXPECT_GT(g.at(g.cell_of({2.02, 0.012})).occupied, 0.0f);
   EXPECT_FLOAT_EQ(g.at(g.cell_of({2.02, 0.012})).free, 0.0f);
-  const MultiResMap without = map_after_beam(0.0, 2.02f);  // the default
+  const MultiResMap without = map_after_beam(0.0, 2.02f);  // no margin
   EXPECT_NEAR(without.finest().at(g.cell_of({1.99, 0.012})).free, pass_free, 1e-6);
   EXPECT_FLOAT_EQ(without.finest().at(g.cell_of({2.02, 0.012})).free, 0.0f);
   // A hit closer than the margin adds no free evidence at all.

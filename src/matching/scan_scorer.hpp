@@ -50,25 +50,28 @@ inline double score_pose(const DsGrid& grid, const std::vector<ScanPoint>& point
 
 namespace dsswarm {
 
+// A cell that holds an obstacle: occupied mass at least 0.15 and more than
+// its free mass.
+inline bool is_obstacle(const DsMass& m) { return m.occupied >= 0.15f && m.occupied > m.free; }
+
+// Whether `holds` is true of cell `c` or one of its 8 neighbours: the
+// neighbourhood absorbs a cell's worth of misplacement.
+template <class Predicate>
+bool in_neighbourhood(const DsGrid& grid, CellIndex c, Predicate holds) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (holds(grid.at({c.x + dx, c.y + dy}))) return true;
+  return false;
+}
+
+inline bool near_obstacle(const DsGrid& grid, CellIndex c) { return in_neighbourhood(grid, c, is_obstacle); }
+
 // How well a placed scan agrees with the map, independent of how much of the
 // map is new: of the points that land where the map has evidence (their cell
 // or a neighbour is not vacuous), the share that land on or next to a cell
 // believed more occupied than free. A correct match keeps most points on
 // walls; a wrong one puts them in space the map has seen to be free. Points
 // in unexplored space count for neither, so entering a new room is no failure.
-// A cell that holds an obstacle: occupied mass at least 0.15 and more than
-// its free mass.
-inline bool is_obstacle(const DsMass& m) { return m.occupied >= 0.15f && m.occupied > m.free; }
-
-// Whether cell `c` or one of its 8 neighbours holds an obstacle. The
-// neighbourhood absorbs a cell's worth of misplacement.
-inline bool near_obstacle(const DsGrid& grid, CellIndex c) {
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx)
-      if (is_obstacle(grid.at({c.x + dx, c.y + dy}))) return true;
-  return false;
-}
-
 struct MatchQuality {
   double known_fraction = 0.0;  // weight share of points that land on known cells
   double inlier_ratio = 1.0;    // of those, the weight share on or next to an obstacle
@@ -80,12 +83,8 @@ inline MatchQuality match_quality(const DsGrid& grid, const std::vector<ScanPoin
   for (const ScanPoint& p : points) {
     const CellIndex c = grid.cell_of(pose * Eigen::Vector2d(p.x, p.y));
     const bool obstacle = near_obstacle(grid, c);
-    bool seen = obstacle;
-    for (int dy = -1; dy <= 1 && !seen; ++dy)
-      for (int dx = -1; dx <= 1 && !seen; ++dx) {
-        const DsMass m = grid.at({c.x + dx, c.y + dy});
-        seen = (m.occupied + m.free) >= kKnown;
-      }
+    const bool seen =
+        obstacle || in_neighbourhood(grid, c, [](const DsMass& m) { return m.occupied + m.free >= kKnown; });
     total += p.weight;
     if (seen) known += p.weight;
     if (obstacle) inliers += p.weight;

@@ -131,13 +131,8 @@ double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points,
     inliers += p.weight;
     // Far from every viewpoint the beams that crossed the space before a wall
     // are sparser than the cells: seen free within a cell of the approach.
-    bool seen_free = false;
-    for (int dy = -1; dy <= 1 && !seen_free; ++dy)
-      for (int dx = -1; dx <= 1 && !seen_free; ++dx) {
-        const DsMass m = grid.at({before->x + dx, before->y + dy});
-        seen_free = m.free >= kSeenFree && m.free > m.occupied;
-      }
-    if (seen_free) same_side += p.weight;
+    if (in_neighbourhood(grid, *before, [](const DsMass& m) { return m.free >= kSeenFree && m.free > m.occupied; }))
+      same_side += p.weight;
   }
   return inliers > 0.0 ? same_side / inliers : 0.0;
 }
