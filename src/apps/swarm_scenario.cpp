@@ -10,6 +10,7 @@
 #include <set>
 #include <utility>
 
+#include "common/agent_name.hpp"
 #include "common/errors.hpp"
 
 namespace dsswarm {
@@ -131,14 +132,6 @@ YAML::Node load_root(const fs::path& yaml) {
 }
 
 // Agent names become folder names in the swarm command's output.
-bool is_valid_agent_name(const std::string& name) {
-  if (name.empty() || name == "." || name == "..") return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-           c == '.';
-  });
-}
-
 struct AgentSpec {
   YAML::Node node;
   std::string context;  // "agents[i] (name):"

@@ -2,7 +2,16 @@
 
 #include "swarm/map_merge.hpp"
 
+#include "common/hash.hpp"
+#include "common/rng.hpp"
+
 namespace dsswarm {
+
+SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
+  SlamConfig c = swarm;
+  c.seed = stream_seed(swarm.seed, fnv1a64(name));
+  return c;
+}
 
 SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config)
     : name_(std::move(name)), slam_(config), knowledge_(name_) {}
@@ -31,6 +40,12 @@ MapSnapshot SwarmAgent::snapshot() const {
     own_copy_version_ = slam_.scans_inserted();
   }
   return knowledge_.snapshot(own_copy_, own_copy_version_);
+}
+
+std::vector<LayerVersion> SwarmAgent::inventory() const {
+  std::vector<LayerVersion> out{{name_, slam_.scans_inserted(), 0}};
+  for (const MapLayer& l : knowledge_.layers()) out.push_back({l.origin, l.version, l.hops});
+  return out;
 }
 
 bool SwarmAgent::merge(const MapSnapshot& snapshot, const Pose2& sender_in_self) {

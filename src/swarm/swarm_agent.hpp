@@ -15,6 +15,10 @@
 
 namespace dsswarm {
 
+// A robot's SLAM settings: the swarm's, with its own random stream derived
+// from its name (so a robot process and the in-process swarm agree).
+SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name);
+
 class SwarmAgent {
  public:
   SwarmAgent(std::string name, const SlamConfig& config);
@@ -30,6 +34,10 @@ class SwarmAgent {
   // `sender_in_self` here, and rebuilds the working map if anything is new.
   // Returns whether anything was new.
   bool merge(const MapSnapshot& snapshot, const Pose2& sender_in_self);
+
+  // The layers snapshot() would hold (origin, version, hops), without copying maps.
+  std::vector<LayerVersion> inventory() const;
+  const std::optional<LaserScan>& last_scan() const { return last_scan_; }
 
   const std::string& name() const { return name_; }
   const Slam& slam() const { return slam_; }
