@@ -2,6 +2,8 @@
 
 #include "swarm/map_merge.hpp"
 
+#include <algorithm>
+
 #include "common/hash.hpp"
 #include "common/rng.hpp"
 
@@ -18,7 +20,12 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config)
 
 SlamStep SwarmAgent::process(const LaserScan& scan) {
   last_scan_ = scan;
-  return slam_.process(scan);
+  const std::size_t before = slam_.scans_inserted();
+  SlamStep step = slam_.process(scan);
+  if (jobs_out_ > 0 && slam_.scans_inserted() != before)
+    inserted_since_job_.push_back(
+        {slam_.scans_inserted(), step.pose, scan.laser_offset, scan_to_points(scan, slam_.config().points)});
+  return step;
 }
 
 EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
@@ -34,11 +41,16 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   return v;
 }
 
-MapSnapshot SwarmAgent::snapshot() const {
+const MultiResMap& SwarmAgent::own_copy() const {
   if (!own_copy_ || own_copy_version_ != slam_.scans_inserted()) {
     own_copy_ = std::make_shared<const MultiResMap>(slam_.own_map());
     own_copy_version_ = slam_.scans_inserted();
   }
+  return *own_copy_;
+}
+
+MapSnapshot SwarmAgent::snapshot() const {
+  own_copy();
   return knowledge_.snapshot(own_copy_, own_copy_version_);
 }
 
@@ -52,6 +64,27 @@ bool SwarmAgent::merge(const MapSnapshot& snapshot, const Pose2& sender_in_self)
   if (!knowledge_.absorb(snapshot, sender_in_self)) return false;
   slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
   return true;
+}
+
+bool SwarmAgent::absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
+  return knowledge_.absorb(snapshot, sender_in_self);
+}
+
+SwarmAgent::ComposeJob SwarmAgent::compose_job() const {
+  own_copy();
+  ++jobs_out_;
+  return {own_copy_, own_copy_version_, knowledge_.layers()};
+}
+
+MultiResMap SwarmAgent::compose(const ComposeJob& job) { return compose_working_map(*job.own, job.foreign); }
+
+void SwarmAgent::install(MultiResMap working, std::size_t own_version) {
+  for (const Inserted& s : inserted_since_job_)
+    if (s.version > own_version) working.insert_scan(s.pose, s.laser_offset, s.points);
+  slam_.replace_working_map(std::move(working));
+  jobs_out_ = std::max(0, jobs_out_ - 1);
+  // A later job's own map is at least this new: older insertions are in it.
+  std::erase_if(inserted_since_job_, [&](const Inserted& s) { return jobs_out_ == 0 || s.version <= own_version; });
 }
 
 }  // namespace dsswarm

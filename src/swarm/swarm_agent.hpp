@@ -35,6 +35,22 @@ class SwarmAgent {
   // Returns whether anything was new.
   bool merge(const MapSnapshot& snapshot, const Pose2& sender_in_self);
 
+  // Merging off the scan path, for a robot process whose scans keep coming:
+  // absorb() takes the layers in at once; compose_job() hands out what the
+  // working map is built from; compose() builds it on any thread (it needs
+  // nothing of the agent); install() swaps it in after replaying the scans
+  // this robot inserted since the job's own map was taken, so no evidence is
+  // lost and none is counted twice. merge() is the three in a row.
+  struct ComposeJob {
+    std::shared_ptr<const MultiResMap> own;
+    std::size_t own_version = 0;  // scans in `own`
+    std::vector<MapLayer> foreign;
+  };
+  bool absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self);
+  ComposeJob compose_job() const;
+  static MultiResMap compose(const ComposeJob& job);
+  void install(MultiResMap working, std::size_t own_version);
+
   // The layers snapshot() would hold (origin, version, hops), without copying maps.
   std::vector<LayerVersion> inventory() const;
   const std::optional<LaserScan>& last_scan() const { return last_scan_; }
@@ -48,6 +64,16 @@ class SwarmAgent {
   Slam slam_;
   MapKnowledge knowledge_;
   std::optional<LaserScan> last_scan_;
+  // Scans inserted while a compose job is out (see install).
+  struct Inserted {
+    std::size_t version = 0;  // scans_inserted() after it
+    Pose2 pose;
+    Pose2 laser_offset;
+    std::vector<ScanPoint> points;
+  };
+  std::vector<Inserted> inserted_since_job_;
+  mutable int jobs_out_ = 0;
+  const MultiResMap& own_copy() const;
   // Frozen copy of the own map for snapshots, refreshed when the map grew.
   mutable std::shared_ptr<const MultiResMap> own_copy_;
   mutable std::size_t own_copy_version_ = 0;
