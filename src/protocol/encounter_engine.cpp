@@ -115,7 +115,7 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
     decline(peer, encounter, fmt::format("busy: {} encounters open", open_.size()), now);
     return nullptr;
   }
-  std::optional<CapturedView> view = port_.capture_view();
+  std::optional<CapturedView> view = port_.capture_view(peer, encounter);
   if (!view) {
     decline(peer, encounter, "no scan yet", now);
     return nullptr;
@@ -282,7 +282,7 @@ void EncounterEngine::absorb_transfer(Exchange& x, double now) {
     const Pose2 t = x.outcome.estimate.b_frame_in_a;
     const auto t0 = std::chrono::steady_clock::now();
     x.outcome.layers_received = snapshot.layers.size();
-    port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse());
+    port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.id);
     x.outcome.merge_ms = ms_since(t0);
   }
   peers_[x.peer].last_merge = now;

@@ -35,14 +35,14 @@ struct CapturedView {
 class AgentPort {
  public:
   virtual ~AgentPort() = default;
-  // Nullopt before the robot's first scan.
-  virtual std::optional<CapturedView> capture_view() = 0;
+  // The robot's view for encounter `encounter` with `peer`; nullopt before its first scan.
+  virtual std::optional<CapturedView> capture_view(const std::string& peer, std::uint64_t encounter) = 0;
   virtual MapSnapshot snapshot() = 0;  // own map (layer 0) and everything known
   virtual std::vector<LayerVersion> inventory() const = 0;  // what snapshot() would hold, without copying
   // The pose of `origin`'s map frame in this robot's frame, if it holds that robot's map.
   virtual std::optional<Pose2> known_frame(const std::string& origin) const = 0;
-  // Takes in the peer's layers (the sender's frame at `sender_in_self`).
-  virtual void merge(MapSnapshot snapshot, const Pose2& sender_in_self) = 0;
+  // Takes in the peer's layers (the sender's frame at `sender_in_self`) from encounter `encounter`.
+  virtual void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) = 0;
 };
 
 struct EncounterOutcome {

@@ -26,7 +26,7 @@ class FakeRobot : public AgentPort {
     view.surroundings = surroundings_points(*own, view.pose, 8.0, 2000);
     view.wide_surroundings = surroundings_points(*own, view.pose, 40.0, 8000);
   }
-  std::optional<CapturedView> capture_view() override { return CapturedView{view, 100.0, nullptr}; }
+  std::optional<CapturedView> capture_view(const std::string&, std::uint64_t) override { return CapturedView{view, 100.0, nullptr}; }
   MapSnapshot snapshot() override { return knowledge.snapshot(own, 11); }
   std::vector<LayerVersion> inventory() const override {
     std::vector<LayerVersion> out{{knowledge.self(), 11, 0}};
@@ -37,7 +37,7 @@ class FakeRobot : public AgentPort {
     const MapLayer* l = knowledge.find(origin);
     return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
   }
-  void merge(MapSnapshot snapshot, const Pose2& sender_in_self) override {
+  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
     ++merges;
     last_transform = sender_in_self;
     knowledge.absorb(snapshot, sender_in_self);

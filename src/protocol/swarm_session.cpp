@@ -18,7 +18,7 @@ class InProcessPort : public protocol::AgentPort {
  public:
   InProcessPort(SwarmAgent& agent, const RelativePoseConfig& locate) : agent_(agent), locate_(locate) {}
 
-  std::optional<protocol::CapturedView> capture_view() override {
+  std::optional<protocol::CapturedView> capture_view(const std::string&, std::uint64_t) override {
     if (!agent_.last_scan()) return std::nullopt;
     return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr};
   }
@@ -28,7 +28,9 @@ class InProcessPort : public protocol::AgentPort {
     const MapLayer* l = agent_.knowledge().find(origin);
     return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
   }
-  void merge(MapSnapshot snapshot, const Pose2& sender_in_self) override { agent_.merge(snapshot, sender_in_self); }
+  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
+    agent_.merge(snapshot, sender_in_self);
+  }
 
  private:
   SwarmAgent& agent_;

@@ -9,6 +9,18 @@
 
 namespace dsswarm {
 
+namespace {
+
+// A saved snapshot's layer of `self` (its own map); an empty layer if it has none.
+const MapLayer& own_layer_of(const MapSnapshot& saved, const std::string& self) {
+  static const MapLayer none;
+  for (const MapLayer& l : saved.layers)
+    if (l.origin == self) return l;
+  return none;
+}
+
+}  // namespace
+
 SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
   SlamConfig c = swarm;
   c.seed = stream_seed(swarm.seed, fnv1a64(name));
@@ -18,13 +30,22 @@ SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
 SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config)
     : name_(std::move(name)), slam_(config), knowledge_(name_) {}
 
+SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose)
+    : name_(std::move(name)),
+      slam_(config, own_layer_of(saved, name_).map ? MultiResMap(*own_layer_of(saved, name_).map) : MultiResMap(config.map), pose),
+      knowledge_(name_),
+      version_base_(own_layer_of(saved, name_).version) {
+  knowledge_.restore(saved);
+  if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+}
+
 SlamStep SwarmAgent::process(const LaserScan& scan) {
   last_scan_ = scan;
-  const std::size_t before = slam_.scans_inserted();
+  const std::size_t before = own_version();
   SlamStep step = slam_.process(scan);
-  if (jobs_out_ > 0 && slam_.scans_inserted() != before)
+  if (jobs_out_ > 0 && own_version() != before)
     inserted_since_job_.push_back(
-        {slam_.scans_inserted(), step.pose, scan.laser_offset, scan_to_points(scan, slam_.config().points)});
+        {own_version(), step.pose, scan.laser_offset, scan_to_points(scan, slam_.config().points)});
   return step;
 }
 
@@ -42,9 +63,9 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
 }
 
 const MultiResMap& SwarmAgent::own_copy() const {
-  if (!own_copy_ || own_copy_version_ != slam_.scans_inserted()) {
+  if (!own_copy_ || own_copy_version_ != own_version()) {
     own_copy_ = std::make_shared<const MultiResMap>(slam_.own_map());
-    own_copy_version_ = slam_.scans_inserted();
+    own_copy_version_ = own_version();
   }
   return *own_copy_;
 }
@@ -55,7 +76,7 @@ MapSnapshot SwarmAgent::snapshot() const {
 }
 
 std::vector<LayerVersion> SwarmAgent::inventory() const {
-  std::vector<LayerVersion> out{{name_, slam_.scans_inserted(), 0}};
+  std::vector<LayerVersion> out{{name_, own_version(), 0}};
   for (const MapLayer& l : knowledge_.layers()) out.push_back({l.origin, l.version, l.hops});
   return out;
 }
@@ -77,6 +98,11 @@ SwarmAgent::ComposeJob SwarmAgent::compose_job() const {
 }
 
 MultiResMap SwarmAgent::compose(const ComposeJob& job) { return compose_working_map(*job.own, job.foreign); }
+
+void SwarmAgent::cancel_job() {
+  jobs_out_ = std::max(0, jobs_out_ - 1);
+  if (jobs_out_ == 0) inserted_since_job_.clear();
+}
 
 void SwarmAgent::install(MultiResMap working, std::size_t own_version) {
   for (const Inserted& s : inserted_since_job_)

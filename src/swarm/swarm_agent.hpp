@@ -22,6 +22,10 @@ SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name);
 class SwarmAgent {
  public:
   SwarmAgent(std::string name, const SlamConfig& config);
+  // Continues from a saved snapshot (a checkpoint): its own layer is the map
+  // it goes on mapping in, from `pose` (a wide search places the first scan);
+  // the others are what it knew. Its own map's version goes on from the saved one.
+  SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose);
 
   SlamStep process(const LaserScan& scan);
 
@@ -50,11 +54,14 @@ class SwarmAgent {
   ComposeJob compose_job() const;
   static MultiResMap compose(const ComposeJob& job);
   void install(MultiResMap working, std::size_t own_version);
+  void cancel_job();  // a job that will never be installed (a newer one superseded it)
 
   // The layers snapshot() would hold (origin, version, hops), without copying maps.
   std::vector<LayerVersion> inventory() const;
   const std::optional<LaserScan>& last_scan() const { return last_scan_; }
 
+  // Scans in its own map, over every run of this robot (a snapshot's version).
+  std::size_t own_version() const { return version_base_ + slam_.scans_inserted(); }
   const std::string& name() const { return name_; }
   const Slam& slam() const { return slam_; }
   const MapKnowledge& knowledge() const { return knowledge_; }
@@ -64,9 +71,10 @@ class SwarmAgent {
   Slam slam_;
   MapKnowledge knowledge_;
   std::optional<LaserScan> last_scan_;
+  std::size_t version_base_ = 0;  // own map version when this run began (resumed)
   // Scans inserted while a compose job is out (see install).
   struct Inserted {
-    std::size_t version = 0;  // scans_inserted() after it
+    std::size_t version = 0;  // own_version() after it
     Pose2 pose;
     Pose2 laser_offset;
     std::vector<ScanPoint> points;
