@@ -110,7 +110,8 @@ void CdrReader::fail(std::string_view field, const std::string& what) const {
   for (const std::string& part : path_) append(part);
   if (!field.empty()) append(field);
   throw InputError(fmt::format("{}: field {}: {} (at byte {} of {})", type_, path, what,
-                               pos_ + sizeof(kCdrLeHeader), payload_.size() + sizeof(kCdrLeHeader)));
+                               pos_ + sizeof(kCdrLeHeader),
+                               payload_.size() + sizeof(kCdrLeHeader)));
 }
 
 std::span<const std::uint8_t> CdrReader::take(std::size_t n, std::size_t alignment,

@@ -212,7 +212,8 @@ TEST(Ros2Codec, EveryTruncationIsAnInputErrorNamingAField) {
   }
   // The path names the element and the nested field.
   const Bytes cut(bytes.begin(), bytes.end() - 60);
-  const std::string message = decode_error(cut, [](const Bytes& b) { return decode<TFMessage>(b); });
+  const std::string message =
+      decode_error(cut, [](const Bytes& b) { return decode<TFMessage>(b); });
   EXPECT_NE(message.find("transforms[2].transform.translation"), std::string::npos) << message;
 }
 
