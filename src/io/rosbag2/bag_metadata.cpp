@@ -119,7 +119,8 @@ BagMetadata read_bag_metadata(const fs::path& dir) {
     out.compression = mode == "FILE" ? Compression::File : Compression::Message;
   } else if (!mode.empty() && mode != "NONE") {
     file.fail_at(info, "compression_mode",
-                 fmt::format("compression mode '{}' is not supported (FILE, MESSAGE or none)", mode));
+                 fmt::format("compression mode '{}' is not supported (FILE, MESSAGE or none)",
+                             mode));
   }
   return out;
 }

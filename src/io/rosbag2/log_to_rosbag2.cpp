@@ -11,7 +11,8 @@ ros2::Time add_nanoseconds(ros2::Time t, int delta) {
   const std::int64_t ns = static_cast<std::int64_t>(t.nanosec) + delta;
   constexpr std::int64_t kNanos = 1'000'000'000;
   const std::int64_t carry = ns < 0 ? -1 : ns >= kNanos ? 1 : 0;
-  return {t.sec + static_cast<std::int32_t>(carry), static_cast<std::uint32_t>(ns - carry * kNanos)};
+  return {t.sec + static_cast<std::int32_t>(carry),
+          static_cast<std::uint32_t>(ns - carry * kNanos)};
 }
 
 // The latest and the earliest Time whose seconds (as the reader computes

@@ -16,7 +16,9 @@ using Bytes = std::vector<std::uint8_t>;
 
 template <typename T>
 void put(Bytes& out, T v) {
-  for (std::size_t i = 0; i < sizeof(T); ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  for (std::size_t i = 0; i < sizeof(T); ++i) {
+    out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
 }
 void put_bytes(Bytes& out, std::span<const std::uint8_t> bytes) {
   out.insert(out.end(), bytes.begin(), bytes.end());
@@ -92,7 +94,8 @@ Bytes McapWriter::channel_record(std::uint16_t id) const {
 
 std::uint16_t McapWriter::channel(const std::string& topic, const std::string& type) {
   if (const auto it = channel_ids_.find(topic); it != channel_ids_.end()) return it->second;
-  auto [schema, is_new] = schema_ids_.emplace(type, static_cast<std::uint16_t>(schema_ids_.size() + 1));
+  const auto next_schema = static_cast<std::uint16_t>(schema_ids_.size() + 1);  // ids from 1
+  auto [schema, is_new] = schema_ids_.emplace(type, next_schema);
   if (is_new) {
     schema_names_.push_back(type);
     put_record(records(), Op::Schema, schema_record(schema->second));

@@ -21,7 +21,8 @@ class McapWriter {
 
   // The channel of `topic`, created (with a schema for `type`) on first use.
   std::uint16_t channel(const std::string& topic, const std::string& type);
-  void message(std::uint16_t channel, std::uint64_t log_time_ns, std::span<const std::uint8_t> data);
+  void message(std::uint16_t channel, std::uint64_t log_time_ns,
+               std::span<const std::uint8_t> data);
 
   // The whole file.
   std::vector<std::uint8_t> finish() &&;

@@ -105,7 +105,8 @@ TEST(Rosbag2Reader, TheStorageFileItselfCanBeGiven) {
     options.files = 2;  // one of two: read alone, with a warning
     const fs::path first = write_bag(dir, small_recording(), options).front();
     const SensorLog part = read_rosbag2(first);
-    EXPECT_TRUE(has_warning(part, "is one of 2 storage files of the bag in")) << joined(part.warnings);
+    EXPECT_TRUE(has_warning(part, "is one of 2 storage files of the bag in"))
+        << joined(part.warnings);
     EXPECT_LT(part.scans.size(), 5U);
   }
 }

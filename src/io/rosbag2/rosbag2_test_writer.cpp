@@ -6,12 +6,14 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
-#include "io/bag_common/time_order.hpp"
+#include "geometry/pose2.hpp"
+#include "io/bag_common/bag_collector.hpp"
 #include "io/rosbag2/mcap_writer.hpp"
 
 namespace dsswarm::rosbag2_test {
@@ -30,7 +32,8 @@ Bytes zstd_compress(std::span<const std::uint8_t> in) {
 
 void write_bytes(const fs::path& path, std::span<const std::uint8_t> bytes) {
   std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
@@ -164,7 +167,8 @@ std::vector<fs::path> write_bag(const fs::path& dir, const std::vector<BagMessag
   const std::size_t per_file = (messages.size() + options.files - 1) / options.files;
   for (std::size_t i = 0; i < options.files; ++i) {
     const std::size_t begin = std::min(messages.size(), i * per_file);
-    const auto part = std::span(messages).subspan(begin, std::min(per_file, messages.size() - begin));
+    const auto part =
+        std::span(messages).subspan(begin, std::min(per_file, messages.size() - begin));
     fs::path path = dir / (dir.filename().string() + "_" + std::to_string(i) +
                            (options.format == Format::Db3 ? ".db3" : ".mcap"));
     if (options.format == Format::Db3) {
@@ -197,9 +201,35 @@ ros2::LaserScan laser_scan(double stamp, std::vector<float> ranges) {
 }
 
 namespace {
-ros2::Quaternion yaw_quaternion(double theta) {
-  return {0.0, 0.0, std::sin(theta / 2), std::cos(theta / 2)};
+
+double step(double v, int ulps) {
+  for (; ulps > 0; --ulps) v = std::nextafter(v, 2.0);
+  for (; ulps < 0; ++ulps) v = std::nextafter(v, -2.0);
+  return v;
 }
+
+// A yaw rotation by `theta` whose heading, as the bag readers compute it
+// (bag::yaw_of), is `theta` to the last bit where a quaternion within a few
+// ulps of the plain one gives that: converted logs then read back unchanged.
+ros2::Quaternion yaw_quaternion(double theta) {
+  constexpr int kUlps = 4;
+  const double z = std::sin(theta / 2), w = std::cos(theta / 2);
+  ros2::Quaternion best{0.0, 0.0, z, w};
+  double best_error = std::numeric_limits<double>::infinity();
+  for (int i = -kUlps; i <= kUlps && best_error > 0.0; ++i) {
+    for (int j = -kUlps; j <= kUlps && best_error > 0.0; ++j) {
+      const ros2::Quaternion q{0.0, 0.0, step(z, i), step(w, j)};
+      const double error =
+          std::abs(normalize_angle(bag::yaw_of({q.x, q.y, q.z, q.w}, "") - theta));
+      if (error < best_error) {
+        best = q;
+        best_error = error;
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 ros2::Odometry odometry(double stamp, double x, double y, double theta) {

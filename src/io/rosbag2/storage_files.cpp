@@ -75,7 +75,8 @@ BagFiles from_file(const fs::path& file) {
                                          file.string(), metadata.files.size(), dir.string()));
     }
   } catch (const InputError& e) {
-    out.warnings.push_back(fmt::format("ignoring {}: {}", (dir / kMetadataFile).string(), e.what()));
+    out.warnings.push_back(
+        fmt::format("ignoring {}: {}", (dir / kMetadataFile).string(), e.what()));
   }
   return out;
 }
