@@ -1,7 +1,6 @@
 #include "io/rosbag2/mcap_reader.hpp"
 
 #include <fmt/format.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <array>
@@ -11,132 +10,17 @@
 
 #include "common/errors.hpp"
 #include "io/rosbag2/decompress.hpp"
+#include "io/rosbag2/mcap_bytes.hpp"
 #include "io/rosbag2/mcap_format.hpp"
 
 namespace dsswarm::rosbag2 {
 namespace {
 
+using mcap::Fields;
+using mcap::FileBytes;
+using mcap::load_le;
 using mcap::Op;
-
-// zlib's CRC32 is the one MCAP uses (IEEE 802.3); `crc` continues a running one.
-std::uint32_t crc32_of(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) {
-  return static_cast<std::uint32_t>(crc32_z(crc, bytes.data(), bytes.size()));
-}
-
-template <typename T>
-T load_le(const std::uint8_t* p) {
-  T v = 0;
-  for (std::size_t i = sizeof(T); i-- > 0;) v = static_cast<T>((v << 8) | p[i]);
-  return v;
-}
-
-// The fields of one record's content; `where` ("file: Channel record at byte
-// N") starts every error.
-class Fields {
- public:
-  Fields(std::span<const std::uint8_t> bytes, std::string where)
-      : bytes_(bytes), where_(std::move(where)) {}
-  Fields(std::vector<std::uint8_t>&&, std::string) = delete;  // would dangle
-
-  template <typename T>
-  T number(const char* field) {
-    return load_le<T>(take(sizeof(T), field).data());
-  }
-  std::string string(const char* field) {
-    const auto bytes = take(number<std::uint32_t>(field), field);
-    return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
-  }
-  template <typename Length>
-  std::span<const std::uint8_t> bytes(const char* field) {
-    return take(number<Length>(field), field);
-  }
-  std::span<const std::uint8_t> rest() { return take(bytes_.size() - pos_, "data"); }
-  const std::string& where() const { return where_; }
-
- private:
-  std::span<const std::uint8_t> take(std::uint64_t n, const char* field) {
-    const std::size_t left = bytes_.size() - pos_;
-    if (n > left) {
-      throw InputError(fmt::format("{}: field {} needs {} bytes, the record has {} left", where_,
-                                   field, n, left));
-    }
-    const auto out = bytes_.subspan(pos_, static_cast<std::size_t>(n));
-    pos_ += static_cast<std::size_t>(n);
-    return out;
-  }
-
-  std::span<const std::uint8_t> bytes_;
-  std::size_t pos_ = 0;
-  std::string where_;
-};
-
-// The file read front to back, with the running CRC of what was read.
-class FileBytes {
- public:
-  FileBytes(std::istream& in, std::uint64_t size, std::string name)
-      : in_(in), size_(size), name_(std::move(name)) {}
-
-  std::uint64_t pos() const { return pos_; }
-  std::uint64_t left() const { return size_ - pos_; }
-  std::uint32_t crc() const { return crc_; }
-  const std::string& name() const { return name_; }
-
-  void read(std::span<std::uint8_t> out, const std::string& what) {
-    if (out.size() > left()) {
-      throw InputError(fmt::format("{}: truncated: {} needs {} bytes, only {} are left", name_,
-                                   what, out.size(), left()));
-    }
-    in_.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(out.size()));
-    if (in_.gcount() != static_cast<std::streamsize>(out.size())) {
-      throw InputError(fmt::format("{}: read error at byte {} ({})", name_, pos_, what));
-    }
-    crc_ = crc32_of(out, crc_);
-    pos_ += out.size();
-  }
-  // `n` must be at most left() (record lengths are checked against it).
-  std::vector<std::uint8_t> read_vector(std::uint64_t n, const std::string& what) {
-    std::vector<std::uint8_t> out(static_cast<std::size_t>(n));
-    read(out, what);
-    return out;
-  }
-  // Reads and hashes `n` bytes a piece at a time, keeping none.
-  void skip(std::uint64_t n, const std::string& what) {
-    std::array<std::uint8_t, 1 << 16> piece{};
-    while (n > 0) {
-      const auto k = static_cast<std::size_t>(std::min<std::uint64_t>(n, piece.size()));
-      read(std::span(piece.data(), k), what);
-      n -= k;
-    }
-  }
-
- private:
-  std::istream& in_;
-  std::uint64_t size_;
-  std::string name_;
-  std::uint64_t pos_ = 0;
-  std::uint32_t crc_ = 0;
-};
-
-const char* op_name(Op op) {
-  switch (op) {
-    case Op::Header: return "Header";
-    case Op::Footer: return "Footer";
-    case Op::Schema: return "Schema";
-    case Op::Channel: return "Channel";
-    case Op::Message: return "Message";
-    case Op::Chunk: return "Chunk";
-    case Op::MessageIndex: return "MessageIndex";
-    case Op::ChunkIndex: return "ChunkIndex";
-    case Op::Attachment: return "Attachment";
-    case Op::AttachmentIndex: return "AttachmentIndex";
-    case Op::Statistics: return "Statistics";
-    case Op::Metadata: return "Metadata";
-    case Op::MetadataIndex: return "MetadataIndex";
-    case Op::SummaryOffset: return "SummaryOffset";
-    case Op::DataEnd: return "DataEnd";
-  }
-  return "unknown";
-}
+using mcap::op_name;
 
 class McapParser {
  public:
@@ -322,7 +206,7 @@ void McapParser::chunk(const Prefix& p) {
     throw InputError(fmt::format("{}: the records are {} bytes, the chunk says {}", here,
                                  data.size(), size));
   }
-  if (const std::uint32_t computed = crc32_of(data); crc != 0 && computed != crc) {
+  if (const std::uint32_t computed = mcap::crc32(data); crc != 0 && computed != crc) {
     throw InputError(fmt::format("{}: CRC mismatch (recorded {:08x}, the records give {:08x}): "
                                  "the chunk is damaged",
                                  here, crc, computed));

@@ -1,12 +1,12 @@
 #include "io/rosbag2/mcap_writer.hpp"
 
 #include <lz4frame.h>
-#include <zlib.h>
 #include <zstd.h>
 
 #include <stdexcept>
 #include <tuple>
 
+#include "io/rosbag2/mcap_bytes.hpp"
 #include "io/rosbag2/mcap_format.hpp"
 
 namespace dsswarm::mcap {
@@ -31,9 +31,6 @@ void put_record(Bytes& out, Op op, const Bytes& content) {
   out.push_back(static_cast<std::uint8_t>(op));
   put(out, static_cast<std::uint64_t>(content.size()));
   put_bytes(out, content);
-}
-std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {
-  return static_cast<std::uint32_t>(crc32_z(0, bytes.data(), bytes.size()));
 }
 
 Bytes compress(Chunking chunking, const Bytes& in) {
@@ -137,7 +134,7 @@ void McapWriter::flush_chunk() {
   put(content, chunk_start_);
   put(content, chunk_end_);
   put(content, static_cast<std::uint64_t>(chunk_.size()));
-  put(content, crc32_of(chunk_));
+  put(content, crc32(chunk_));
   put_string(content, compression_name(chunking_));
   put(content, static_cast<std::uint64_t>(compressed.size()));
   put_bytes(content, compressed);
@@ -228,7 +225,7 @@ std::uint64_t McapWriter::write_summary() {
 std::vector<std::uint8_t> McapWriter::finish() && {
   flush_chunk();
   Bytes data_end;
-  put(data_end, crc32_of(file_));  // everything so far, magic included
+  put(data_end, crc32(file_));  // everything so far, magic included
   put_record(file_, Op::DataEnd, data_end);
   const std::uint64_t summary_start = file_.size();
   const std::uint64_t offsets_start = write_summary();
@@ -239,7 +236,7 @@ std::vector<std::uint8_t> McapWriter::finish() && {
   put(file_, std::uint64_t{20});
   put_bytes(file_, footer);
   // The summary CRC covers the summary, the summary offsets and the footer up to this field.
-  put(file_, crc32_of(std::span(file_).subspan(summary_start)));
+  put(file_, crc32(std::span(file_).subspan(summary_start)));
   file_.insert(file_.end(), std::begin(kMagic), std::end(kMagic));
   return std::move(file_);
 }
