@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "io/bag_common/bag_collector.hpp"
@@ -55,11 +56,7 @@ class Ros2Decoder {
       decompressed = rosbag2::zstd_decompress(data, rosbag2::kMaxMessageBytes, where);
       data = decompressed;
     }
-    try {
-      add_decoded(role, data, record_time);
-    } catch (const InputError& e) {
-      throw InputError(where + ": " + e.what());
-    }
+    add_decoded(role, Message{data, record_time, where});
   }
 
  private:
@@ -74,25 +71,42 @@ class Ros2Decoder {
     return {};
   }
 
-  void add_decoded(BagCollector::Role role, std::span<const std::uint8_t> data, double t) {
+  struct Message {
+    std::span<const std::uint8_t> data;
+    double record_time;
+    const std::string& where;  // names the message in errors
+  };
+
+  // The CDR decoded, or an InputError naming the message.
+  template <typename T>
+  static T decode(const Message& m) {
+    try {
+      return ros2::decode<T>(m.data);
+    } catch (const InputError& e) {
+      throw InputError(m.where + ": " + e.what());
+    }
+  }
+
+  void add_decoded(BagCollector::Role role, const Message& m) {
+    const double t = m.record_time;
     if (role == BagCollector::Role::Scan) {
-      const auto scan = ros2::decode<ros2::LaserScan>(data);
+      auto scan = decode<ros2::LaserScan>(m);
       bag::RawScan raw_scan;
       raw_scan.angle_min = scan.angle_min;
       raw_scan.angle_increment = scan.angle_increment;
       raw_scan.range_min = scan.range_min;
       raw_scan.range_max = scan.range_max;
-      raw_scan.ranges = scan.ranges;
+      raw_scan.ranges = std::move(scan.ranges);
       collector_.add_scan(ros2::to_seconds(scan.header.stamp), t, scan.header.frame_id,
                           std::move(raw_scan));
     } else if (role == BagCollector::Role::Odometry) {
-      const auto odometry = ros2::decode<ros2::Odometry>(data);
+      const auto odometry = decode<ros2::Odometry>(m);
       const ros2::Pose& pose = odometry.pose.pose;
       collector_.add_odometry(ros2::to_seconds(odometry.header.stamp), t, pose.position.x,
                               pose.position.y, raw(pose.orientation));
     } else {
       const bool is_static = role == BagCollector::Role::StaticTransforms;
-      for (const ros2::TransformStamped& tf : ros2::decode<ros2::TFMessage>(data).transforms) {
+      for (const ros2::TransformStamped& tf : decode<ros2::TFMessage>(m).transforms) {
         const ros2::Vector3& p = tf.transform.translation;
         collector_.add_transform(is_static, ros2::to_seconds(tf.header.stamp), t,
                                  tf.header.frame_id, tf.child_frame_id, p.x, p.y,
