@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "apps/swarm_scenario.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/rosbag2/rosbag2_test_util.hpp"
 
@@ -224,6 +225,15 @@ TEST(Rosbag2Reader, ReadLogRecognisesRos2Bags) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no metadata.yaml in"), std::string::npos) << e.what();
   }
+}
+
+TEST(Rosbag2Reader, SwarmScenarioAgentsPlayBagFolders) {
+  const fs::path dir = write_test_bag("scenario/bag", small_recording(), {});
+  const fs::path yaml = test::write_text(dir.parent_path() / "scenario.yaml",
+                                         "agents:\n  - name: a\n    log: bag\n");
+  const SwarmScenario scenario = load_swarm_scenario(yaml);
+  ASSERT_EQ(scenario.streams.size(), 1U);
+  EXPECT_EQ(scenario.streams[0].scans.size(), 5U);
 }
 
 TEST(Rosbag2Reader, MetadataYamlProblemsNameTheFileAndLine) {
