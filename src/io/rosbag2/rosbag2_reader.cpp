@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cctype>
 #include <map>
 #include <utility>
 
@@ -138,11 +136,7 @@ void merge_topics(const std::vector<rosbag2::StorageTopic>& from,
 
 bool is_rosbag2_path(const fs::path& path) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) return true;
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".db3" || extension == ".mcap";
+  return fs::is_directory(path, ec) || rosbag2::storage_kind_of(path).has_value();
 }
 
 SensorLog read_rosbag2(const fs::path& path, const BagReadOptions& options) {

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <iterator>
 #include <optional>
 #include <streambuf>
 
@@ -19,20 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::optional<StorageKind> storage_of(const fs::path& file) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".db3") return StorageKind::Sqlite3;
-  if (extension == ".mcap") return StorageKind::Mcap;
-  return std::nullopt;
-}
-
 BagFiles from_folder_without_metadata(const fs::path& dir) {
   std::vector<fs::path> found;
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
-    if (entry.is_regular_file(ec) && storage_of(entry.path())) found.push_back(entry.path());
+    if (entry.is_regular_file(ec) && storage_kind_of(entry.path())) found.push_back(entry.path());
   }
   std::sort(found.begin(), found.end());
   if (found.empty()) {
@@ -49,7 +39,7 @@ BagFiles from_folder_without_metadata(const fs::path& dir) {
                                  "reindex` writes one; or pass a single file",
                                  kMetadataFile, dir.string(), found.size(), names));
   }
-  return BagFiles{*storage_of(found.front()), found, Compression::None,
+  return BagFiles{*storage_kind_of(found.front()), found, Compression::None,
                   {fmt::format("no {} in {}: reading its only storage file {} (`ros2 bag "
                                "reindex` writes {})",
                                kMetadataFile, dir.string(), found.front().filename().string(),
@@ -58,7 +48,7 @@ BagFiles from_folder_without_metadata(const fs::path& dir) {
 
 // One storage file; the folder's metadata.yaml, if any, says how it is compressed.
 BagFiles from_file(const fs::path& file) {
-  const std::optional<StorageKind> storage = storage_of(file);
+  const std::optional<StorageKind> storage = storage_kind_of(file);
   if (!storage) {
     throw InputError(file.string() + ": not a ROS 2 bag (a folder, or a .db3 or .mcap file)");
   }
@@ -109,6 +99,15 @@ class BytesBuffer : public std::streambuf {
 };
 
 }  // namespace
+
+std::optional<StorageKind> storage_kind_of(const fs::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".db3") return StorageKind::Sqlite3;
+  if (extension == ".mcap") return StorageKind::Mcap;
+  return std::nullopt;
+}
 
 BagFiles locate_bag_files(const fs::path& path) {
   std::error_code ec;

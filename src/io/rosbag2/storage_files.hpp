@@ -2,6 +2,7 @@
 // Which storage files a path given for a ROS 2 bag stands for, and reading
 // one of them whatever its storage and rosbag2 compression.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct BagFiles {
   Compression compression = Compression::None;
   std::vector<std::string> warnings;  // how the files were found, when it is not the usual way
 };
+
+// By the file name: .db3 or .mcap (any case).
+std::optional<StorageKind> storage_kind_of(const std::filesystem::path& file);
 
 // `path`: a bag folder with metadata.yaml; a folder without one that holds
 // exactly one .db3 or .mcap file (warning); or one such file (warning if the
