@@ -2,10 +2,10 @@
 // trajectories of the CARMEN logs: the same scans and odometry to the bit,
 // the same SLAM result with the same seed. A LaserScan holds its beam
 // geometry as float32, so the comparison is with the CARMEN log's geometry
-// rounded so; the double geometry as read from the CARMEN text moves beam
-// angles by ~5e-10 rad, which is enough for SLAM to take another path after
-// a few hundred scans (figures printed with DSSWARM_ROS2BAG_ALL_LOGS=1). mit-csail runs here; intel and fr079 take
-// minutes and run with DSSWARM_ROS2BAG_ALL_LOGS=1
+// rounded so; the double geometry read from the CARMEN text differs by
+// ~5e-10 rad, enough for SLAM to take another path after a few hundred scans.
+// mit-csail runs here; intel and fr079 take a minute each and run, with the
+// figures for the double geometry, with DSSWARM_ROS2BAG_ALL_LOGS=1
 // (scripts/ros2bag_realdata.sh).
 #include <gtest/gtest.h>
 
