@@ -272,13 +272,12 @@ bool ReaderBase::wait(std::chrono::milliseconds timeout) const {
          0;
 }
 
-int ReaderBase::take_loan(void** samples, dds_sample_info_t* infos, std::size_t max) const {
-  return check(dds_take(reader_.get(), samples, infos, max, static_cast<std::uint32_t>(max)),
-               "dds_take " + topic_name_);
+int take_loaned(dds_entity_t reader, void** samples, dds_sample_info_t* infos, std::size_t max) {
+  return check(dds_take(reader, samples, infos, max, static_cast<std::uint32_t>(max)), "dds_take");
 }
 
-void ReaderBase::return_loan(void** samples, int count) const {
-  dds_return_loan(reader_.get(), samples, count);  // only fails for a bad handle: nothing to undo
+void return_loaned(dds_entity_t reader, void** samples, int count) noexcept {
+  dds_return_loan(reader, samples, count);  // only fails for a bad handle: nothing to undo
 }
 
 }  // namespace dsswarm::net

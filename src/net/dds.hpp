@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "net/qos.hpp"
@@ -163,6 +164,41 @@ class Writer : public WriterBase {
   }
 };
 
+// Taking samples on loan from a reader handle (listener callbacks get the
+// handle, not our Reader): take_loaned returns the count, samples[i] valid
+// until return_loaned.
+inline constexpr std::size_t kMaxTakeBatch = 32;
+int take_loaned(dds_entity_t reader, void** samples, dds_sample_info_t* infos, std::size_t max);
+void return_loaned(dds_entity_t reader, void** samples, int count) noexcept;
+
+// Takes up to `max` samples of type T from `reader` (kMaxTakeBatch at a time)
+// and calls on_sample(const T&, const dds_sample_info_t&) for each one that
+// carries data; the sample is valid during the call only. Returns that count.
+template <class T, class OnSample>
+std::size_t take_samples(dds_entity_t reader, std::size_t max, OnSample&& on_sample) {
+  struct LoanGuard {
+    dds_entity_t reader;
+    void** samples;
+    int count;
+    ~LoanGuard() { return_loaned(reader, samples, count); }
+  };
+  std::size_t handed = 0;
+  while (max > 0) {
+    void* samples[kMaxTakeBatch] = {};
+    dds_sample_info_t infos[kMaxTakeBatch];
+    const int n = take_loaned(reader, samples, infos, max < kMaxTakeBatch ? max : kMaxTakeBatch);
+    if (n <= 0) break;
+    const LoanGuard guard{reader, samples, n};
+    for (int i = 0; i < n; ++i) {
+      if (!infos[i].valid_data) continue;
+      on_sample(*static_cast<const T*>(samples[i]), infos[i]);
+      ++handed;
+    }
+    max -= static_cast<std::size_t>(n);
+  }
+  return handed;
+}
+
 class ReaderBase {
  public:
   ReaderBase(Participant& participant, dds_entity_t topic, const std::string& topic_name, const Qos& qos,
@@ -173,13 +209,6 @@ class ReaderBase {
   // Blocks until a sample is available or `timeout` passes.
   bool wait(std::chrono::milliseconds timeout) const;
   dds_entity_t handle() const { return reader_.get(); }
-
- protected:
-  // Takes up to kMaxBatch samples on loan; returns the count (samples[i] valid
-  // until return_loan).
-  static constexpr std::size_t kMaxBatch = 32;
-  int take_loan(void** samples, dds_sample_info_t* infos, std::size_t max) const;
-  void return_loan(void** samples, int count) const;
 
  private:
   std::string topic_name_;
@@ -196,35 +225,11 @@ class Reader : public ReaderBase {
       : ReaderBase(topic.participant(), topic.handle(), topic.name(), qos, partition, TopicType<T>::ros_type_hash,
                    listener) {}
 
-  // Takes up to `max` samples (at most kMaxBatch at a time) and calls
-  // on_sample(const T&, const dds_sample_info_t&) for each one carrying data;
-  // the sample is valid during the call only. Returns the number handed over.
+  // See take_samples.
   template <class OnSample>
   std::size_t take(std::size_t max, OnSample&& on_sample) const {
-    std::size_t handed = 0;
-    while (max > 0) {
-      void* samples[kMaxBatch] = {};
-      dds_sample_info_t infos[kMaxBatch];
-      const int n = take_loan(samples, infos, max < kMaxBatch ? max : kMaxBatch);
-      if (n <= 0) break;
-      const LoanGuard guard{this, samples, n};
-      for (int i = 0; i < n; ++i) {
-        if (!infos[i].valid_data) continue;
-        on_sample(*static_cast<const T*>(samples[i]), infos[i]);
-        ++handed;
-      }
-      max -= static_cast<std::size_t>(n);
-    }
-    return handed;
+    return take_samples<T>(handle(), max, std::forward<OnSample>(on_sample));
   }
-
- private:
-  struct LoanGuard {
-    const Reader* reader;
-    void** samples;
-    int count;
-    ~LoanGuard() { reader->return_loan(samples, count); }
-  };
 };
 
 }  // namespace dsswarm::net

@@ -44,4 +44,14 @@ Pose2 to_pose2(const ros::Transform& transform) {
   return {transform.translation.x, transform.translation.y, quaternion_yaw(transform.rotation)};
 }
 
+ros::TransformStamped to_ros_transform_stamped(double stamp, const std::string& parent, const std::string& child,
+                                               const Pose2& parent_from_child) {
+  ros::TransformStamped t{};
+  t.header.stamp = to_ros_time(stamp);
+  t.header.frame_id = borrow(parent);
+  t.child_frame_id = borrow(child);
+  t.transform = to_ros_transform(parent_from_child);
+  return t;
+}
+
 }  // namespace dsswarm::net

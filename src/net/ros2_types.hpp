@@ -84,6 +84,10 @@ ros::Transform to_ros_transform(const Pose2& pose);
 Pose2 to_pose2(const ros::Pose& pose);
 Pose2 to_pose2(const ros::Transform& transform);
 
+// A TransformStamped parent → child for a planar pose (points at the strings).
+ros::TransformStamped to_ros_transform_stamped(double stamp, const std::string& parent, const std::string& child,
+                                               const Pose2& parent_from_child);
+
 // The C structs' strings and sequences point at our storage (no copy; DDS
 // neither frees nor keeps them): valid while `s` / `v` live and stay unchanged.
 inline char* borrow(const std::string& s) { return const_cast<char*>(s.c_str()); }
