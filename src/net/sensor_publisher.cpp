@@ -83,11 +83,17 @@ void SensorPublisher::publish_laser_offset(const Pose2& offset, double stamp) {
   published_offset_ = offset;
 }
 
+bool SensorPublisher::latch_laser_offset(const Pose2& offset, double stamp, std::chrono::milliseconds timeout) {
+  publish_laser_offset(offset, stamp);
+  return tf_static_writer_.wait_for_acks(timeout);
+}
+
 int SensorPublisher::subscribers() const { return std::min(scan_writer_.matched(), odom_writer_.matched()); }
 
-bool SensorPublisher::wait_for_subscribers(int count, std::chrono::milliseconds timeout) const {
+bool SensorPublisher::wait_for_subscribers(int count, std::chrono::milliseconds timeout, bool odometry) const {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
-  return scan_writer_.wait_for_readers(count, timeout) && odom_writer_.wait_for_readers(count, left_until(deadline));
+  return scan_writer_.wait_for_readers(count, timeout) &&
+         (!odometry || odom_writer_.wait_for_readers(count, left_until(deadline)));
 }
 
 bool SensorPublisher::wait_for_acks(std::chrono::milliseconds timeout) const {

@@ -40,8 +40,15 @@ class SensorPublisher {
 
   // Subscribers matched on every topic a LiveScanSource reads (scan and odometry).
   int subscribers() const;
-  bool wait_for_subscribers(int count, std::chrono::milliseconds timeout) const;
+  // `count` subscribers on scan, and on odometry too unless `odometry` is false.
+  bool wait_for_subscribers(int count, std::chrono::milliseconds timeout, bool odometry = true) const;
   bool wait_for_acks(std::chrono::milliseconds timeout) const;
+  // Publishes the laser offset on /tf_static and waits until every reliable
+  // subscriber acknowledged it. A subscriber that reads /tf_static too (a
+  // LiveScanSource does) has then discovered all our writers — /tf_static's
+  // is made last — so the first scans are not lost to one-sided discovery
+  // (a matched writer does not mean the reader knows it yet).
+  bool latch_laser_offset(const Pose2& offset, double stamp, std::chrono::milliseconds timeout);
 
  private:
   void publish_laser_offset(const Pose2& offset, double stamp);
@@ -54,7 +61,7 @@ class SensorPublisher {
   Writer<ros::LaserScan> scan_writer_;
   Writer<ros::Odometry> odom_writer_;
   Writer<ros::TFMessage> tf_writer_;
-  Writer<ros::TFMessage> tf_static_writer_;
+  Writer<ros::TFMessage> tf_static_writer_;  // made last: see latch_laser_offset
   std::optional<Pose2> published_offset_;
 };
 
