@@ -148,9 +148,10 @@ std::string domain_config_xml(const ParticipantConfig& c) {
 Participant::Participant(const ParticipantConfig& config) : config_(config) {
   acquire_domain(config_.domain_id, domain_config_xml(config_));
   const dds_entity_t p = dds_create_participant(config_.domain_id, nullptr, nullptr);
-  if (p < 0) {
+  if (p < 0) {  // with DDS Security: a certificate, key or signed document Cyclone could not use
     release_domain(config_.domain_id);
-    throw DdsError(fmt::format("dds_create_participant in domain {}", config_.domain_id), p);
+    throw ConfigError(fmt::format("cannot create a DDS participant in domain {}: {} (Cyclone's log above says why)",
+                                  config_.domain_id, dds_strretcode(p)));
   }
   participant_ = Entity(p);
 }

@@ -79,7 +79,8 @@ class Participant {
  public:
   // Creates (or, within this process, shares) the domain with the
   // configuration above, then a participant in it. Participants of one domain
-  // in one process must agree on the configuration (ConfigError otherwise).
+  // in one process must agree on the configuration. A configuration Cyclone
+  // refuses (unknown interface, unusable security files) is a ConfigError.
   explicit Participant(const ParticipantConfig& config);
   ~Participant();
   Participant(const Participant&) = delete;

@@ -95,6 +95,18 @@ TEST(Participant, AnUnknownInterfaceIsAConfigError) {
   EXPECT_THROW(Participant p(config), ConfigError);
 }
 
+TEST(Participant, TheSecurityFragmentReachesCyclone) {
+  ParticipantConfig config = loopback_config();
+  config.security_xml =
+      "<Security><Authentication><IdentityCertificate>file:/nonexistent/id.pem</IdentityCertificate>"
+      "<IdentityCA>file:/nonexistent/ca.pem</IdentityCA><PrivateKey>file:/nonexistent/key.pem</PrivateKey>"
+      "</Authentication><AccessControl><Governance>file:/nonexistent/gov.p7s</Governance>"
+      "<PermissionsCA>file:/nonexistent/ca.pem</PermissionsCA><Permissions>file:/nonexistent/perm.p7s</Permissions>"
+      "</AccessControl><Cryptographic/></Security>";
+  EXPECT_THROW(Participant p(config), ConfigError);  // Cyclone tried to load the files
+  Participant plain(loopback_config());               // and the domain was released
+}
+
 TEST(Dds, CycloneErrorsCarryTheCallAndTheReason) {
   Participant p(loopback_config());
   try {
@@ -138,6 +150,26 @@ TEST(Dds, PartitionsKeepSwarmsApart) {
   writer_a.write(packet_view(bytes({0xa})));
   writer_b.write(packet_view(bytes({0xb})));
   EXPECT_EQ(take_packets(reader_b, 2, 500ms), std::vector<std::vector<std::uint8_t>>{bytes({0xb})});
+}
+
+TEST(Qos, SwarmPacketsThrottleTheWriterOfAStalledReaderInsteadOfPilingUp) {
+  Participant sender(loopback_config());
+  Participant receiver(loopback_config());
+  const std::string name = "dsswarm" + test_namespace();
+  Topic<SwarmPacket> tx_topic(sender, name);
+  Topic<SwarmPacket> rx_topic(receiver, name);
+  Writer<SwarmPacket> writer(tx_topic, swarm_reliable(4, 150ms));
+  Reader<SwarmPacket> reader(rx_topic, swarm_reliable(4, 150ms));
+  ASSERT_TRUE(writer.wait_for_readers(1, kMatchTimeout));
+  const auto payload = bytes({1, 2, 3, 4});
+  int accepted = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (accepted < 100 && writer.try_write(packet_view(payload))) ++accepted;
+  EXPECT_GE(accepted, 4);
+  EXPECT_LT(accepted, 100) << "nothing bounds the queue";
+  EXPECT_GE(std::chrono::steady_clock::now() - t0, 140ms) << "the last write blocked for max_blocking_time";
+  EXPECT_EQ(take_packets(reader, 100, 300ms).size(), static_cast<std::size_t>(accepted));
+  EXPECT_TRUE(writer.try_write(packet_view(payload))) << "room again once the reader took its packets";
 }
 
 // What Nav2 and rviz2 see of our presets: matched (or not) endpoint counts.

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "apps/replay_command.hpp"
@@ -178,6 +179,17 @@ TEST_F(ReplayTest, NoSubscriberInTimeIsAnError) {
   EXPECT_EQ(replay.wait(kTimeout), 1);
   EXPECT_NE(read_text(dir / "replay.out").find("error: replay: fewer than 1 subscriber"), std::string::npos)
       << read_text(dir / "replay.out");
+}
+
+TEST_F(ReplayTest, BadSettingsAreConfigErrors) {
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"--rate", "0"}, {"--start", "-1"}, {"--domain", "300"}, {"--namespace", "/bad name"}}) {
+    // Nothing is published: each setting fails before the first scan.
+    Child replay({DSSWARM_CLI, "replay", log.string(), "--interface", "lo", option, value}, dir / "replay.out");
+    ASSERT_TRUE(replay.started());
+    EXPECT_EQ(replay.wait(kTimeout), 2) << option;
+    EXPECT_NE(read_text(dir / "replay.out").find("error: "), std::string::npos) << read_text(dir / "replay.out");
+  }
 }
 
 TEST(ReplaySchedule, BackwardStampsGoOutAtOnceAndStartSkips) {
