@@ -96,9 +96,9 @@ bool play_once(const SensorLog& log, const std::vector<std::optional<double>>& s
   const double log_seconds = log.scans.back().timestamp - log.scans.front().timestamp;
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
     if (!schedule[i]) continue;
-    if (!sleep_until(wall_start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(*schedule[i])))) {
-      return false;
-    }
+    const auto offset = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(*schedule[i]));
+    const auto due = wall_start + offset;
+    if (!sleep_until(due)) return false;
     publisher.publish(log.scans[i]);
     ++progress.published;
     if (Clock::now() - progress.last_report >= kProgressPeriod) {
@@ -107,6 +107,30 @@ bool play_once(const SensorLog& log, const std::vector<std::optional<double>>& s
                  publisher.subscribers());
       progress.last_report = Clock::now();
     }
+  }
+  return true;
+}
+
+// Holds the first scan until `a.wait_for_subscribers` subscribers know us
+// (matched, and /tf_static acknowledged). Returns false when stopped by a
+// signal; throws after --wait-timeout.
+bool wait_for_subscribers(const ReplayArgs& a, const SensorLog& log, net::SensorPublisher& publisher) {
+  fmt::print(stderr, "replay: waiting for {} subscriber(s) on scan and odom\n", a.wait_for_subscribers);
+  const bool with_odometry =
+      std::any_of(log.scans.begin(), log.scans.end(), [](const LaserScan& s) { return s.odometry.has_value(); });
+  const auto deadline = Clock::now() + std::chrono::milliseconds(std::llround(a.wait_timeout * 1000.0));
+  const auto slice = std::chrono::duration_cast<std::chrono::milliseconds>(kSleepSlice);
+  while (!publisher.wait_for_subscribers(a.wait_for_subscribers, slice, with_odometry)) {
+    if (g_stop) return false;
+    if (Clock::now() >= deadline) {
+      throw std::runtime_error(
+          fmt::format("replay: fewer than {} subscriber(s) within {} s", a.wait_for_subscribers, a.wait_timeout));
+    }
+  }
+  const LaserScan& first = log.scans.front();
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+  if (!publisher.latch_laser_offset(first.laser_offset, first.timestamp, std::max(left, slice))) {
+    spdlog::warn("replay: a subscriber did not acknowledge /tf_static in time; its first scans may be lost");
   }
   return true;
 }
@@ -129,25 +153,13 @@ void replay(const ReplayArgs& a) {
   net::SensorPublisher publisher(participant, publisher_config);
   const StopOnSignal stop_on_signal;
 
-  if (a.wait_for_subscribers > 0) {
-    fmt::print(stderr, "replay: waiting for {} subscriber(s) on scan and odom\n", a.wait_for_subscribers);
-    const bool with_odometry = std::any_of(log.scans.begin(), log.scans.end(), [](const LaserScan& s) {
-      return s.odometry.has_value();
-    });
-    const auto timeout = std::chrono::milliseconds(std::llround(a.wait_timeout * 1000.0));
-    const LaserScan& first = log.scans.front();
-    if (!publisher.wait_for_subscribers(a.wait_for_subscribers, timeout, with_odometry) ||
-        !publisher.latch_laser_offset(first.laser_offset, first.timestamp, timeout)) {
-      throw std::runtime_error(fmt::format("replay: fewer than {} subscriber(s) within {} s",
-                                           a.wait_for_subscribers, a.wait_timeout));
-    }
-  }
+  bool completed = a.wait_for_subscribers == 0 || wait_for_subscribers(a, log, publisher);
   Progress progress;
   const auto t0 = Clock::now();
-  bool completed = true;
-  do {
+  while (completed) {
     completed = play_once(log, schedule, a.rate, publisher, progress);
-  } while (completed && a.loop);
+    if (!a.loop) break;
+  }
   publisher.wait_for_acks(kFinalAckTimeout);  // reliable subscribers get the last scans
   fmt::print("{} {} scans in {:.1f} s\n", completed ? "replayed" : "interrupted after", progress.published,
              std::chrono::duration<double>(Clock::now() - t0).count());

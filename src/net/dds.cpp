@@ -171,7 +171,7 @@ dds_entity_t scoped_entity(std::map<std::string, Entity>& cache, const std::stri
   if (it != cache.end()) return it->second.get();
   Qos qos;
   const char* names[] = {partition.c_str()};
-  dds_qset_partition(qos.get(), 1, names);
+  if (!partition.empty()) dds_qset_partition(qos.get(), 1, names);  // none at all, as ROS 2 sets it
   const dds_entity_t e = publisher ? dds_create_publisher(participant, qos.get(), nullptr)
                                    : dds_create_subscriber(participant, qos.get(), nullptr);
   check(e, fmt::format("create {} for partition '{}'", publisher ? "publisher" : "subscriber", partition));

@@ -83,7 +83,9 @@ std::optional<Clock::time_point> wait_pong(const Reader<ros::LaserScan>& pong, d
   while (Clock::now() < deadline) {
     pong.wait(1ms);
     bool got = false;
-    pong.take(64, [&](const ros::LaserScan& m, const dds_sample_info_t&) { got = got || to_seconds(m.header.stamp) == stamp; });
+    pong.take(64, [&](const ros::LaserScan& m, const dds_sample_info_t&) {
+      got = got || to_seconds(m.header.stamp) == stamp;
+    });
     if (got) return Clock::now();
   }
   return std::nullopt;
@@ -126,7 +128,8 @@ void maps(Participant& p, const Reader<ros::LaserScan>& pong, int side) {
   }
   std::sort(write_ms.begin(), write_ms.end());
   std::sort(delivered_ms.begin(), delivered_ms.end());
-  fmt::print("OccupancyGrid {}x{} ({:.1f} MB): convert + dds_write median {:.1f} ms, delivered median {:.1f} ms ({} of 5)\n",
+  fmt::print("OccupancyGrid {}x{} ({:.1f} MB): convert + dds_write median {:.1f} ms, "
+             "delivered median {:.1f} ms ({} of 5)\n",
              side, side, side * side / 1e6, write_ms[write_ms.size() / 2],
              delivered_ms.empty() ? 0.0 : delivered_ms[delivered_ms.size() / 2], delivered_ms.size());
 }

@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "net/dds.hpp"
 
@@ -30,6 +32,13 @@ inline ParticipantConfig loopback_config() {
   config.domain_id = test_domain();
   config.interface = "lo";
   return config;
+}
+
+// Float readings as their bit patterns: NaN compares equal to itself.
+inline std::vector<std::uint32_t> bits(const std::vector<float>& v) {
+  std::vector<std::uint32_t> out(v.size());
+  std::memcpy(out.data(), v.data(), v.size() * sizeof(float));
+  return out;
 }
 
 }  // namespace dsswarm::net::test

@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -34,6 +33,7 @@ using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
 constexpr auto kTimeout = 10s;
+using test::bits;
 
 // A child process, killed and reaped if the test ends before it does.
 class Child {
@@ -123,12 +123,6 @@ struct ReplayTest : testing::Test {
 
   fs::path dir, log;
 };
-
-std::vector<std::uint32_t> bits(const std::vector<float>& v) {
-  std::vector<std::uint32_t> out(v.size());
-  std::memcpy(out.data(), v.data(), v.size() * sizeof(float));
-  return out;
-}
 
 TEST_F(ReplayTest, ALiveSourceGetsTheScansReadLogReads) {
   const SensorLog expected = read_log(log);

@@ -79,7 +79,8 @@ struct LiveScanSource::Impl {
       pending.pop_front();
       ++stats.scans_dropped;
     }
-    pending.push_back({to_laser_scan(msg), frame_of(msg.header.frame_id), Clock::now() + millis(config.wait_for_odometry)});
+    const auto deadline = Clock::now() + millis(config.wait_for_odometry);
+    pending.push_back({to_laser_scan(msg), frame_of(msg.header.frame_id), deadline});
   }
 
   void add_odometry_message(const ros::Odometry& msg) {

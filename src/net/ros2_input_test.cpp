@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <numbers>
 #include <thread>
@@ -20,6 +19,7 @@ namespace dsswarm::net {
 namespace {
 
 using namespace std::chrono_literals;
+using test::bits;
 using test::loopback_config;
 using test::test_namespace;
 
@@ -39,12 +39,6 @@ LaserScan make_scan(double stamp, int index) {
   s.odometry = Pose2(0.1 * index, -0.05 * index, 0.02 * index);
   s.laser_offset = Pose2(0.2, 0.0, 0.1);
   return s;
-}
-
-std::vector<std::uint32_t> bits(const std::vector<float>& v) {
-  std::vector<std::uint32_t> out(v.size());
-  std::memcpy(out.data(), v.data(), v.size() * sizeof(float));
-  return out;
 }
 
 void expect_pose_near(const Pose2& a, const Pose2& b, double tolerance) {

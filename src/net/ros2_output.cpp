@@ -141,8 +141,8 @@ bool PoseOutput::publish(double stamp, const Pose2& map_pose, const std::optiona
                          SteadyClock::time_point now) {
   // REP 105: map → odom makes map → odom → base_link end at the map pose.
   const Pose2 map_from_child = odom_pose ? map_pose * odom_pose->inverse() : map_pose;
-  ros::TransformStamped t = to_ros_transform_stamped(stamp, config_.map_frame,
-                                                     odom_pose ? config_.odom_frame : config_.base_frame, map_from_child);
+  const std::string& child = odom_pose ? config_.odom_frame : config_.base_frame;
+  ros::TransformStamped t = to_ros_transform_stamped(stamp, config_.map_frame, child, map_from_child);
   ros::TFMessage tf{};
   tf.transforms = {1, 1, &t, false};
   bool all_written = tf_writer_.try_write(tf);

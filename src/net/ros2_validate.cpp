@@ -86,7 +86,8 @@ std::string check_odometry(const ros::Odometry& o, const SampleLimits& limits) {
   const std::size_t child = o.child_frame_id == nullptr ? 0 : std::strlen(o.child_frame_id);
   if (child > limits.max_frame_id) return fmt::format("child_frame_id has {} characters", child);
   const auto& p = o.pose.pose.position;
-  if (std::string bad = first_non_finite({{"pose.position.x", p.x}, {"pose.position.y", p.y}, {"pose.position.z", p.z}});
+  if (std::string bad =
+          first_non_finite({{"pose.position.x", p.x}, {"pose.position.y", p.y}, {"pose.position.z", p.z}});
       !bad.empty()) {
     return bad;
   }
