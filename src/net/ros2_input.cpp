@@ -137,10 +137,15 @@ struct LiveScanSource::Impl {
 
   // ------------------------------------------------------------ hand-out (consumer thread)
 
+  // The frame odometry poses refer to: the Odometry messages' child frame if they name one.
+  const std::string& base_frame() const {
+    const bool from_topic = config.odometry == OdometrySource::kTopic && !odometry_child.empty();
+    return from_topic ? odometry_child : config.base_frame;
+  }
+
   // The laser pose in the base frame, composed up the static tree.
   std::optional<Pose2> laser_offset(const std::string& frame) const {
-    const bool from_topic = config.odometry == OdometrySource::kTopic && !odometry_child.empty();
-    const std::string& base = from_topic ? odometry_child : config.base_frame;
+    const std::string& base = base_frame();
     Pose2 base_from_laser;
     std::string current = frame;
     for (std::size_t hop = 0; hop <= kMaxFrameChain; ++hop) {
@@ -171,7 +176,7 @@ struct LiveScanSource::Impl {
       scan.laser_offset = *offset;
     } else if (warned_frames.size() < config.max_static_frames && warned_frames.insert(p.frame).second) {
       spdlog::warn("no /tf_static transform from '{}' to laser frame '{}': using the laser at the robot origin",
-                   config.base_frame, p.frame);
+                   base_frame(), p.frame);
     }
     ++stats.scans_delivered;
     return scan;
