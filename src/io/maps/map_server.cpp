@@ -28,17 +28,6 @@ constexpr int kUnknownPixel = 205;
 // What map_server computes from a (non-negated) pixel value.
 double pixel_occupancy(int value) { return (255.0 - value) / 255.0; }
 
-void check_thresholds(const MapServerOptions& o) {
-  const bool ordered = o.free_thresh > pixel_occupancy(kFreePixel) && o.free_thresh < o.occupied_thresh &&
-                       o.occupied_thresh < pixel_occupancy(kOccupiedPixel);
-  if (!ordered) {  // also catches NaN
-    throw ConfigError(fmt::format(
-        "map_server thresholds: need 1/255 < free_thresh < occupied_thresh < 1 so the map reads back as "
-        "written, got free_thresh {} and occupied_thresh {}",
-        o.free_thresh, o.occupied_thresh));
-  }
-}
-
 // map_saver's 205 reads back as unknown for its default thresholds; for other
 // thresholds pick a grey that lands between them, so the round trip holds.
 int unknown_pixel_for(const MapServerOptions& o) {
@@ -96,11 +85,11 @@ std::string encode_pgm(const GridRaster& raster, const MapServerOptions& options
   // The picture's top row is the map's highest y.
   for (int cy = raster.height - 1; cy >= 0; --cy) {
     for (int cx = 0; cx < raster.width; ++cx) {
-      const double p = raster.at(cx, cy).occupancy();
+      const std::int8_t occupancy = occupancy_grid_value(raster.at(cx, cy), options);
       int value = unknown;
-      if (p > options.occupied_thresh) {
+      if (occupancy == 100) {
         value = kOccupiedPixel;
-      } else if (p < options.free_thresh) {
+      } else if (occupancy == 0) {
         value = kFreePixel;
       }
       if (options.negate) value = 255 - value;
@@ -220,8 +209,19 @@ DsMass mass_for(std::int8_t value) {
 
 }  // namespace
 
+void check_map_server_options(const MapServerOptions& o) {
+  const bool ordered = o.free_thresh > pixel_occupancy(kFreePixel) && o.free_thresh < o.occupied_thresh &&
+                       o.occupied_thresh < pixel_occupancy(kOccupiedPixel);
+  if (!ordered) {  // also catches NaN
+    throw ConfigError(fmt::format(
+        "map_server thresholds: need 1/255 < free_thresh < occupied_thresh < 1 so the map reads back as "
+        "written, got free_thresh {} and occupied_thresh {}",
+        o.free_thresh, o.occupied_thresh));
+  }
+}
+
 void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const MapServerOptions& options) {
-  check_thresholds(options);
+  check_map_server_options(options);
   check_raster(raster, yaml_path);
   const std::string image_name = yaml_path.stem().string() + ".pgm";
   const fs::path pgm_path = yaml_path.parent_path() / image_name;

@@ -1,0 +1,202 @@
+#include "apps/replay_command.hpp"
+
+#include <fmt/core.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "common/errors.hpp"
+#include "io/logs/log_reader.hpp"
+#include "net/dds.hpp"
+#include "net/sensor_publisher.hpp"
+
+namespace dsswarm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr auto kSleepSlice = std::chrono::milliseconds(50);  // how soon SIGINT is noticed
+constexpr auto kProgressPeriod = std::chrono::seconds(2);
+constexpr auto kFinalAckTimeout = std::chrono::seconds(2);
+
+struct ReplayArgs {
+  std::string log;
+  std::string ns;
+  double rate = 1.0;
+  double start = 0.0;
+  bool loop = false;
+  int wait_for_subscribers = 0;
+  double wait_timeout = 30.0;
+  int domain = 0;
+  std::string interface = "auto";
+};
+
+// SIGINT/SIGTERM ask the replay to stop; the previous handlers come back after.
+std::atomic<bool> g_stop{false};
+
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    g_stop = false;
+    struct sigaction action {};
+    action.sa_handler = [](int) { g_stop = true; };
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~StopOnSignal() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+// Sleeps until `t` unless asked to stop; returns false when stopped.
+bool sleep_until(Clock::time_point t) {
+  while (!g_stop) {
+    const auto now = Clock::now();
+    if (now >= t) return true;
+    std::this_thread::sleep_for(std::min<Clock::duration>(t - now, kSleepSlice));
+  }
+  return false;
+}
+
+void check_args(const ReplayArgs& a) {
+  if (!(std::isfinite(a.rate) && a.rate > 0.0)) throw ConfigError(fmt::format("--rate {} is not > 0", a.rate));
+  if (!(std::isfinite(a.start) && a.start >= 0.0)) throw ConfigError(fmt::format("--start {} is not >= 0", a.start));
+  if (a.wait_for_subscribers < 0) throw ConfigError("--wait-for-subscribers must be >= 0");
+  if (!(std::isfinite(a.wait_timeout) && a.wait_timeout > 0.0)) {
+    throw ConfigError(fmt::format("--wait-timeout {} is not > 0", a.wait_timeout));
+  }
+  if (a.domain < 0) throw ConfigError(fmt::format("--domain {} is negative", a.domain));
+}
+
+struct Progress {
+  std::size_t published = 0;
+  Clock::time_point last_report = Clock::now();
+};
+
+// One pass over the log; returns false when stopped by a signal.
+bool play_once(const SensorLog& log, const std::vector<std::optional<double>>& schedule, double rate,
+               net::SensorPublisher& publisher, Progress& progress) {
+  const auto wall_start = Clock::now();
+  const double log_seconds = log.scans.back().timestamp - log.scans.front().timestamp;
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    if (!schedule[i]) continue;
+    const auto offset = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(*schedule[i]));
+    const auto due = wall_start + offset;
+    if (!sleep_until(due)) return false;
+    publisher.publish(log.scans[i]);
+    ++progress.published;
+    if (Clock::now() - progress.last_report >= kProgressPeriod) {
+      fmt::print(stderr, "replay: scan {}/{}, log time {:.1f} of {:.1f} s, rate {}x, {} subscriber(s)\n", i + 1,
+                 log.scans.size(), log.scans[i].timestamp - log.scans.front().timestamp, log_seconds, rate,
+                 publisher.subscribers());
+      progress.last_report = Clock::now();
+    }
+  }
+  return true;
+}
+
+// Holds the first scan until `a.wait_for_subscribers` subscribers know us
+// (matched, and /tf_static acknowledged). Returns false when stopped by a
+// signal; throws after --wait-timeout.
+bool wait_for_subscribers(const ReplayArgs& a, const SensorLog& log, net::SensorPublisher& publisher) {
+  fmt::print(stderr, "replay: waiting for {} subscriber(s) on scan and odom\n", a.wait_for_subscribers);
+  const bool with_odometry =
+      std::any_of(log.scans.begin(), log.scans.end(), [](const LaserScan& s) { return s.odometry.has_value(); });
+  const auto deadline = Clock::now() + std::chrono::milliseconds(std::llround(a.wait_timeout * 1000.0));
+  const auto slice = std::chrono::duration_cast<std::chrono::milliseconds>(kSleepSlice);
+  while (!publisher.wait_for_subscribers(a.wait_for_subscribers, slice, with_odometry)) {
+    if (g_stop) return false;
+    if (Clock::now() >= deadline) {
+      throw std::runtime_error(
+          fmt::format("replay: fewer than {} subscriber(s) within {} s", a.wait_for_subscribers, a.wait_timeout));
+    }
+  }
+  const LaserScan& first = log.scans.front();
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+  if (!publisher.latch_laser_offset(first.laser_offset, first.timestamp, std::max(left, slice))) {
+    spdlog::warn("replay: a subscriber did not acknowledge /tf_static in time; its first scans may be lost");
+  }
+  return true;
+}
+
+void replay(const ReplayArgs& a) {
+  check_args(a);
+  const SensorLog log = read_log(a.log);
+  for (const auto& w : log.warnings) spdlog::warn("{}", w);
+  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  std::vector<double> stamps;
+  for (const auto& s : log.scans) stamps.push_back(s.timestamp);
+  const auto schedule = replay_schedule(stamps, a.rate, a.start);
+
+  net::ParticipantConfig participant_config;
+  participant_config.domain_id = static_cast<std::uint32_t>(a.domain);
+  participant_config.interface = a.interface;
+  net::Participant participant(participant_config);
+  net::SensorPublisherConfig publisher_config;
+  publisher_config.ns = a.ns;
+  net::SensorPublisher publisher(participant, publisher_config);
+  const StopOnSignal stop_on_signal;
+
+  bool completed = a.wait_for_subscribers == 0 || wait_for_subscribers(a, log, publisher);
+  Progress progress;
+  const auto t0 = Clock::now();
+  while (completed) {
+    completed = play_once(log, schedule, a.rate, publisher, progress);
+    if (!a.loop) break;
+  }
+  publisher.wait_for_acks(kFinalAckTimeout);  // reliable subscribers get the last scans
+  fmt::print("{} {} scans in {:.1f} s\n", completed ? "replayed" : "interrupted after", progress.published,
+             std::chrono::duration<double>(Clock::now() - t0).count());
+}
+
+}  // namespace
+
+std::vector<std::optional<double>> replay_schedule(const std::vector<double>& stamps, double rate, double start) {
+  std::vector<std::optional<double>> out;
+  out.reserve(stamps.size());
+  if (stamps.empty()) return out;
+  double clock = stamps.front();
+  for (const double t : stamps) {
+    clock = std::max(clock, t);
+    const double elapsed = clock - stamps.front();
+    out.push_back(elapsed < start ? std::nullopt : std::optional<double>((elapsed - start) / rate));
+  }
+  return out;
+}
+
+void add_replay_command(CLI::App& app) {
+  auto args = std::make_shared<ReplayArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "replay", "Publish a log (CARMEN or ROS1 bag) as ROS 2 LaserScan, Odometry and tf over DDS, in real time");
+  cmd->add_option("log", args->log, "Log file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--namespace", args->ns, "ROS namespace of the robot, e.g. /robot1");
+  cmd->add_option("--rate", args->rate, "Playback speed factor")->capture_default_str();
+  cmd->add_option("--start", args->start, "Skip the first S seconds of the log")->capture_default_str();
+  cmd->add_flag("--loop", args->loop, "Start over at the end (until SIGINT)");
+  cmd->add_option("--wait-for-subscribers", args->wait_for_subscribers,
+                  "Before publishing, wait for N subscribers on scan and odom")
+      ->capture_default_str();
+  cmd->add_option("--wait-timeout", args->wait_timeout, "Seconds to wait for them (then fail)")->capture_default_str();
+  cmd->add_option("--domain", args->domain, "DDS domain id (ROS_DOMAIN_ID)")->capture_default_str();
+  cmd->add_option("--interface", args->interface, "Network interface (name or address); lo = loopback")
+      ->capture_default_str();
+  cmd->callback([args] { replay(*args); });
+}
+
+}  // namespace dsswarm
