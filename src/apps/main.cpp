@@ -23,7 +23,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version arrive as "errors" that exit 0; the rest are
+    // command-line mistakes: exit 2 like any other configuration error.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    fmt::print(stderr, "error: {}\nRun with --help for more information.\n", e.what());
+    return 2;
   } catch (const dsswarm::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

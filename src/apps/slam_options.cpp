@@ -12,12 +12,25 @@ namespace dsswarm {
 void add_slam_options(CLI::App& command, SlamOptions& o) {
   command.add_option("--config", o.config_file, "Configuration (JSON; `dsswarm config` prints the defaults)")
       ->check(CLI::ExistingFile);
-  command.add_option("--seed", o.seed, "Seed of the matcher's random search (same seed, same result)");
+  command.add_option("--seed", o.seed, "Seed of the matcher's random search (same seed, same result)")
+      ->check(non_negative_integer());
   command.add_flag("--no-odometry", o.no_odometry, "Ignore odometry (constant-velocity motion prior)");
   command.add_flag("--filter", o.filter, "Drop redundant scans before matching (scan filter; config key filter.enabled)");
   command.add_option("--evaluations", o.evaluations, "Pose evaluations per scan (matcher budget)")
       ->check(CLI::Range(1, 100000));
   command.add_option("--resolution", o.resolution, "Map cell size, metres")->check(CLI::Range(0.005, 2.0));
+}
+
+CLI::Validator non_negative_integer() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, ec] = std::from_chars(text.data(), end, value);
+        if (ec != std::errc() || stop != end) return "must be a whole number >= 0, got '" + text + "'";
+        return {};
+      },
+      "");
 }
 
 SlamConfig SlamOptions::resolve() const { return resolve_swarm().slam; }

@@ -26,6 +26,10 @@ struct SlamOptions {
 
 void add_slam_options(CLI::App& command, SlamOptions& options);
 
+// For unsigned options (seeds): a whole number >= 0. CLI11 alone would wrap
+// "-1" around to 18446744073709551615.
+CLI::Validator non_negative_integer();
+
 // "x,y,theta" (metres, metres, radians) as given to `--start-pose`. Throws
 // ConfigError naming `option` unless it is exactly three finite numbers.
 Pose2 parse_pose_option(const std::string& text, const std::string& option);

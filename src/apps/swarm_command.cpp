@@ -126,9 +126,7 @@ void add_swarm_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "swarm", "Several robots from recorded logs (scenario file: agents, log segments, encounters), each mapping in "
                "its own frame and merging maps when they meet");
-  cmd->add_option("scenario", args->scenario, "Scenario YAML (see scenarios/README.md)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scenario", args->scenario, "Scenario YAML (see scenarios/README.md)")->required();
   cmd->add_option("--out", args->out, "Output directory (created if needed)")->required();
   cmd->add_flag("--no-merge", args->no_merge, "Ignore encounters: every robot maps alone (the baseline)");
   add_slam_options(*cmd, args->slam);
@@ -142,8 +140,12 @@ void add_swarm_demo_command(CLI::App& app) {
               "another is near, then they merge maps; scored against ground truth");
   cmd->add_option("--out", args->out, "Output directory")->capture_default_str();
   cmd->add_option("--robots", args->robots, "Number of robots")->check(CLI::Range(1, 64))->capture_default_str();
-  cmd->add_option("--run-seed", args->seed, "Seed of the robots' starts, routes and sensor noise")->capture_default_str();
-  cmd->add_option("--world-seed", args->world_seed, "Seed of the generated building")->capture_default_str();
+  cmd->add_option("--run-seed", args->seed, "Seed of the robots' starts, routes and sensor noise")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  cmd->add_option("--world-seed", args->world_seed, "Seed of the generated building")
+      ->check(non_negative_integer())
+      ->capture_default_str();
   cmd->add_option("--range", args->range, "Proximity sensor range (m)")->check(CLI::Range(0.5, 20.0))->capture_default_str();
   cmd->add_flag("--no-merge", args->no_merge, "Ignore encounters: every robot maps alone (the baseline)");
   add_slam_options(*cmd, args->slam);
