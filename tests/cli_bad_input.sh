@@ -68,6 +68,24 @@ fi
 for d in o1 o2 o3 o4 o5 o6 o7 o8 o9 o10 o11 o12 o13 o14 o15 o16 o17; do
   if [ -e "$tmp/$d" ] && [ -n "$(ls -A "$tmp/$d")" ]; then echo "FAIL: partial outputs left in $tmp/$d"; fails=$((fails + 1)); fi
 done
+# Quirks of real data: warnings on stderr (stdout is for results), the run goes on.
+quirky="nan -1.5 $(printf '2.0 %.0s' $(seq 178))"
+for t in 1 3 2; do printf 'FLASER 180 %s0 0 0 0 0 0 %d.0 host %d.0\n' "$quirky" "$t" "$t"; done > "$tmp/quirky.log"
+echo 'FOO 1 2' >> "$tmp/quirky.log"
+expect_warnings() {  # expect_warnings NAME PATTERN... -- command...
+  local name=$1; shift
+  local patterns=()
+  while [ "$1" != "--" ]; do patterns+=("$1"); shift; done; shift
+  "$@" >"$tmp/stdout" 2>"$tmp/stderr" || { echo "FAIL $name: exit $?"; cat "$tmp/stderr"; fails=$((fails + 1)); return; }
+  if grep -qi 'warn' "$tmp/stdout"; then echo "FAIL $name: warnings on stdout"; cat "$tmp/stdout"; fails=$((fails + 1)); return; fi
+  for p in "${patterns[@]}"; do
+    if ! grep -q "^warning: .*$p" "$tmp/stderr"; then echo "FAIL $name: no warning about '$p' on stderr:"; cat "$tmp/stderr"; fails=$((fails + 1)); return; fi
+  done
+  echo "ok   $name: $(wc -l < "$tmp/stderr") warning lines on stderr"
+}
+expect_warnings run-warnings "run backwards" "NaN" "negative" "unknown record type 'FOO'" -- "$bin" run "$tmp/quirky.log" --out "$tmp/w1"
+expect_warnings filter-warnings "run backwards" "negative" -- "$bin" filter "$tmp/quirky.log" --out "$tmp/w2.log"
+
 # Swarm scenarios: a typo'd key, an unknown agent in an encounter, a missing log.
 printf 'agents:\n  - name: r1\n    log: corrupt.log\n    dirction: forward\n' > "$tmp/typo.yaml"
 printf 'agents:\n  - name: r1\n    log: small.log\nencounters:\n  - agents: [r1, r9]\n    time: 1\n' > "$tmp/unknown_agent.yaml"

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include "common/errors.hpp"
 #include "filter/scan_filter.hpp"
@@ -35,6 +36,8 @@ struct FilterArgs {
   std::string plot;
   std::string scan_topic = "/scan";
   std::string odom_topic = "/odom";
+  bool tf_odometry = false;
+  bool odom_topic_named = false;  // --odom-topic given: a topic the bag lacks is an error
   bool no_odometry = false;
   std::string statistic = "median";
   std::string binning = "sector";
@@ -123,8 +126,10 @@ void run_filter(FilterArgs& a) {
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
+  read.use_tf_odometry = a.tf_odometry;
+  read.odom_topic_named = a.odom_topic_named;
   const SensorLog log = read_log(a.log, read);
-  for (const auto& w : log.warnings) fmt::print(stderr, "warning: {}\n", w);
+  for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
 
   std::vector<DecisionRow> rows;
@@ -197,7 +202,9 @@ void add_filter_command(CLI::App& app) {
                   "PNG over time: min correlation with the window (0.8 bottom to 1.0 top, P_pair in blue, "
                   "dropped scans red) and a red band where scans were dropped");
   cmd->add_option("--scan-topic", args->scan_topic, "ROS bag: sensor_msgs/LaserScan topic")->capture_default_str();
-  cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
+  const CLI::Option* odom_topic =
+      cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
+  cmd->add_flag("--tf-odometry", args->tf_odometry, "ROS bag: take odometry from /tf instead of the odometry topic");
   cmd->add_flag("--no-odometry", args->no_odometry, "Ignore odometry: fixed window, no motion valve");
   cmd->add_option("--columns", c.columns, "Histogram columns B (0 = clamp(round(15 n/1000), 6, 30) for n beams)")
       ->capture_default_str();
@@ -226,7 +233,10 @@ void add_filter_command(CLI::App& app) {
                   "Keep when the view ahead moved against odometry's forward travel by more than this share "
                   "of it (inf: off)")
       ->capture_default_str();
-  cmd->callback([args] { run_filter(*args); });
+  cmd->callback([args, odom_topic] {
+    args->odom_topic_named = odom_topic->count() > 0;
+    run_filter(*args);
+  });
 }
 
 }  // namespace dsswarm

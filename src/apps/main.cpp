@@ -1,6 +1,8 @@
 // dsswarm: decentralized multi-robot 2D laser SLAM with Dempster–Shafer grids.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 
 #include <exception>
 
@@ -11,6 +13,9 @@
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
+  // Warnings go to stderr as "warning: ...", like errors; stdout carries results.
+  spdlog::set_default_logger(spdlog::stderr_color_st("dsswarm"));
+  spdlog::set_pattern("%^%l%$: %v");
   CLI::App app{"dsswarm: decentralized multi-robot 2D laser SLAM on small computers"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "dsswarm 0.1.0");

@@ -24,6 +24,7 @@ struct RunArgs {
   std::string scan_topic = "/scan";
   std::string odom_topic = "/odom";
   bool tf_odometry = false;
+  bool odom_topic_named = false;  // --odom-topic given: a topic the bag lacks is an error
   std::string beams = "params";
   std::vector<double> laser_offset;
   std::string save_map;    // .dsmap written at the end (the robot's own map)
@@ -58,6 +59,7 @@ void run(const RunArgs& a) {
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
   read.use_tf_odometry = a.tf_odometry;
+  read.odom_topic_named = a.odom_topic_named;
   if (a.beams == "classic") read.carmen.beams = CarmenOptions::BeamConvention::Classic;
   if (a.beams == "span180") read.carmen.beams = CarmenOptions::BeamConvention::Span180;
   if (!a.laser_offset.empty()) read.carmen.laser_offset = parse_offset(a.laser_offset);
@@ -100,7 +102,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("log", args->log, "Log file")->required();
   cmd->add_option("--out", args->out, "Output directory (created if needed)")->required();
   cmd->add_option("--scan-topic", args->scan_topic, "ROS bag: sensor_msgs/LaserScan topic")->capture_default_str();
-  cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
+  const CLI::Option* odom_topic =
+      cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
   cmd->add_flag("--tf-odometry", args->tf_odometry, "ROS bag: take odometry from /tf instead of the odometry topic");
   cmd->add_option("--beams", args->beams, "CARMEN beam angles: params (# PARAM lines, else classic), classic, span180")
       ->check(CLI::IsMember({"params", "classic", "span180"}))
@@ -115,7 +118,10 @@ void add_run_command(CLI::App& app) {
                   "default: the first scan's odometry pose")
       ->needs(load);
   add_slam_options(*cmd, args->slam);
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, odom_topic] {
+    args->odom_topic_named = odom_topic->count() > 0;
+    run(*args);
+  });
 }
 
 void add_config_command(CLI::App& app) {

@@ -105,8 +105,8 @@ std::size_t count_field(const Where& where, std::string_view token, std::string_
   return static_cast<std::size_t>(value);
 }
 
-// Ranges may be "nan" or "inf": kept as they are (LaserScan treats them as
-// invalid) and counted for a warning.
+// Ranges may be "nan", "inf" or negative: kept as they are (LaserScan treats
+// them as invalid) and counted for a warning.
 void read_ranges(const Where& where, const Tokens& fields, std::size_t first, std::size_t n,
                  std::vector<float>& ranges) {
   ranges.resize(n);
@@ -210,7 +210,7 @@ class CarmenParser {
     const Pose2 offset = laser_offset(*chosen, log.warnings);
     const auto [range_min, range_max] = range_limits();
 
-    std::size_t nonfinite = 0;
+    std::size_t nonfinite = 0, negative = 0;
     std::size_t backwards = 0;
     log.scans.reserve(chosen->size());
     for (LaserRecord& record : *chosen) {
@@ -230,6 +230,8 @@ class CarmenParser {
       scan.laser_offset = offset;
       nonfinite += static_cast<std::size_t>(
           std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return !std::isfinite(r); }));
+      negative += static_cast<std::size_t>(
+          std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return std::isfinite(r) && r < 0.0f; }));
       if (!log.scans.empty() && scan.timestamp < log.scans.back().timestamp) ++backwards;
       log.scans.push_back(std::move(scan));
     }
@@ -245,6 +247,10 @@ class CarmenParser {
     if (nonfinite > 0) {
       log.warnings.push_back(fmt::format("{}: {} range readings are NaN or inf (kept; they count as invalid beams)",
                                          file_, nonfinite));
+    }
+    if (negative > 0) {
+      log.warnings.push_back(fmt::format("{}: {} range readings are negative (kept; they count as invalid beams)",
+                                         file_, negative));
     }
     if (empty_scans_ > 0) {
       log.warnings.push_back(fmt::format("{}: skipped {} laser records with 0 readings", file_, empty_scans_));

@@ -378,6 +378,19 @@ TEST(CarmenReader, NanAndInfRangesStayAndWarn) {
   EXPECT_TRUE(has_warning(log, ": 4 range readings are NaN or inf")) << all_warnings(log);
 }
 
+TEST(CarmenReader, NegativeRangesStayAndWarn) {
+  const fs::path path = scratch_dir("negative") / "a.log";
+  write_plain(path, flaser({"1.0", "-0.5", "-inf", "2.0"}, 1.0) + flaser({"-3", "1", "1", "1"}, 2.0));
+  const SensorLog log = read_carmen(path);
+  ASSERT_EQ(log.scans.size(), 2u);
+  EXPECT_FLOAT_EQ(log.scans[0].ranges[1], -0.5f);
+  EXPECT_EQ(log.scans[0].valid_count(), 2u);
+  // -inf is counted once, with the non-finite readings.
+  EXPECT_TRUE(has_warning(log, ": 2 range readings are negative (kept; they count as invalid beams)"))
+      << all_warnings(log);
+  EXPECT_TRUE(has_warning(log, ": 1 range readings are NaN or inf")) << all_warnings(log);
+}
+
 TEST(CarmenReader, WindowsLineEndingsAndTabs) {
   const fs::path path = scratch_dir("crlf") / "a.log";
   write_plain(path, "# PARAM laser_range_max 12\r\nFLASER\t3 1 2 3\t0 0 0 0 0 0 5.0 host 0\r\n  \r\n");

@@ -27,7 +27,8 @@ bool is_bag(const std::filesystem::path& path) {
 SensorLog read_log(const std::filesystem::path& path, const LogReadOptions& options) {
   if (is_bag(path)) {
 #ifdef DSSWARM_LOGS_READ_BAGS
-    return read_rosbag(path, RosbagOptions{options.scan_topic, options.odom_topic, options.use_tf_odometry});
+    return read_rosbag(path, RosbagOptions{options.scan_topic, options.odom_topic, options.use_tf_odometry,
+                                           options.odom_topic_named});
 #else
     throw InputError(path.string() + ": ROS bag support was not built (configure with DSSWARM_WITH_ROSBAG=ON "
                                      "and the ROS rosbag_storage packages installed)");

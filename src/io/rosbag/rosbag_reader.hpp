@@ -24,6 +24,9 @@ struct RosbagOptions {
   std::string scan_topic = "/scan";
   std::string odom_topic = "/odom";
   bool use_tf_odometry = false;  // odom -> base_link on /tf instead of odom_topic
+  // The user named odom_topic (a typo is likely): its absence from the bag is
+  // an InputError, not a warning.
+  bool odom_topic_named = false;
 };
 
 // Scans farther than this outside the odometry time span get no odometry.
@@ -32,7 +35,8 @@ inline constexpr double kRosbagMaxOdometryExtrapolation = 0.5;  // seconds
 // Throws InputError naming the file for a missing file, a file that is not a
 // readable ROS1 bag (corrupt, truncated, not a bag), a scan topic that is
 // absent (the message lists the bag's topics and types) or carries no scans,
-// a topic of the wrong message type, and non-finite scan geometry or poses.
+// a topic of the wrong message type, an odometry topic that is absent when
+// `odom_topic_named`, and non-finite scan geometry or poses.
 // Quirks handled (stamps running backwards, missing odometry or laser offset,
 // scans outside the odometry span) are reported in SensorLog::warnings.
 SensorLog read_rosbag(const std::filesystem::path& path, const RosbagOptions& options = {});
