@@ -10,6 +10,7 @@ expect_error() {  # expect_error NAME EXIT_CODE PATTERN -- command...
   local name=$1 expected=$2 pattern=$3; shift 4
   local out code
   out=$("$@" 2>&1 >/dev/null); code=$?
+  printf '%s\n' "$out" > "$tmp/$name.err"
   if [ $code -ne "$expected" ]; then
     echo "FAIL $name: exit code $code, expected $expected"; echo "$out"; fails=$((fails + 1)); return
   fi
@@ -65,9 +66,35 @@ expect_error start-pose-alone 2 "load-map" -- "$bin" run "$tmp/small.log" --out 
 if ! "$bin" run "$tmp/small.log" --out "$tmp/ok2" --load-map "$tmp/good.dsmap" --start-pose 0.05,0,0 >/dev/null 2>&1; then
   echo "FAIL load-map: a valid map was refused"; fails=$((fails + 1))
 fi
-for d in o1 o2 o3 o4 o5 o6 o7 o8 o9 o10 o11 o12 o13 o14 o15 o16 o17; do
+# Output locations are checked before any work (the logs here are corrupt: the
+# error must be about the output), never naming a temporary file.
+mkdir -p "$tmp/a_dir"; : > "$tmp/a_file"
+expect_error out-is-a-file 2 "--out $tmp/a_file: exists and is not a folder" -- "$bin" run "$tmp/corrupt.log" --out "$tmp/a_file"
+expect_error out-in-proc 2 "--out /proc/x: cannot create a folder in /proc" -- "$bin" run "$tmp/corrupt.log" --out /proc/x
+expect_error save-map-is-a-folder 2 "--save-map $tmp/a_dir: is a folder" -- "$bin" run "$tmp/corrupt.log" --out "$tmp/o18" --save-map "$tmp/a_dir"
+expect_error save-map-in-proc 2 "--save-map /proc/x.dsmap" -- "$bin" run "$tmp/small.log" --out "$tmp/o19" --save-map /proc/x.dsmap
+expect_error filter-out-in-proc 2 "--out /proc/f.log" -- "$bin" filter "$tmp/corrupt.log" --out /proc/f.log
+expect_error filter-decisions-folder 2 "--decisions $tmp/a_dir" -- "$bin" filter "$tmp/corrupt.log" --out "$tmp/f.log" --decisions "$tmp/a_dir"
+expect_error filter-plot-in-file 2 "--plot $tmp/a_file/p.png" -- "$bin" filter "$tmp/corrupt.log" --out "$tmp/f.log" --plot "$tmp/a_file/p.png"
+expect_error swarm-out-is-a-file 2 "--out $tmp/a_file" -- "$bin" swarm "$tmp/broken.yaml" --out "$tmp/a_file"
+expect_error demo-out-in-proc 2 "--out /proc/demo" -- "$bin" demo --out /proc/demo
+if [ "$(id -u)" -ne 0 ]; then  # root writes anywhere
+  mkdir -p "$tmp/locked"; chmod 555 "$tmp/locked"
+  expect_error out-not-writable 2 "--out $tmp/locked" -- "$bin" run "$tmp/corrupt.log" --out "$tmp/locked"
+  chmod 755 "$tmp/locked"
+fi
+if grep -rq '\.tmp\.' "$tmp"/*.err 2>/dev/null; then echo "FAIL: an error names a temporary file"; fails=$((fails + 1)); fi
+[ -e "$tmp/f.log" ] && { echo "FAIL: filter wrote $tmp/f.log"; fails=$((fails + 1)); }
+
+# A log without a single return (every reading at max range): a clear error, no outputs.
+far=$(printf '81.91 %.0s' $(seq 180))
+for t in 1 2 3; do printf 'FLASER 180 %s0 0 0 0 0 0 %d.0 host %d.0\n' "$far" "$t" "$t"; done > "$tmp/no_returns.log"
+expect_error no-returns 1 "no_returns.log: no scan has a valid return" -- "$bin" run "$tmp/no_returns.log" --out "$tmp/o20" --save-map "$tmp/o20/m.dsmap"
+
+for d in o1 o2 o3 o4 o5 o6 o7 o8 o9 o10 o11 o12 o13 o14 o15 o16 o17 o18 o19 o20; do
   if [ -e "$tmp/$d" ] && [ -n "$(ls -A "$tmp/$d")" ]; then echo "FAIL: partial outputs left in $tmp/$d"; fails=$((fails + 1)); fi
 done
+
 # Quirks of real data: warnings on stderr (stdout is for results), the run goes on.
 quirky="nan -1.5 $(printf '2.0 %.0s' $(seq 178))"
 for t in 1 3 2; do printf 'FLASER 180 %s0 0 0 0 0 0 %d.0 host %d.0\n' "$quirky" "$t" "$t"; done > "$tmp/quirky.log"

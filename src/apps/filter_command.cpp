@@ -7,12 +7,11 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <ostream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ostream.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
@@ -22,6 +21,7 @@
 #include "io/logs/carmen_writer.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/maps/render.hpp"
+#include "io/output_paths.hpp"
 
 namespace dsswarm {
 
@@ -50,15 +50,14 @@ struct DecisionRow {
   ScanFilter::Decision decision;
 };
 
-void write_decisions(const std::string& path, const std::vector<DecisionRow>& rows) {
-  write_file_atomically(path, [&rows](std::ostream& out) {
-    out << "index,timestamp,kept,min_correlation,product,window,reason\n";
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const ScanFilter::Decision& d = rows[i].decision;
-      fmt::print(out, "{},{},{},{:.6f},{:.6f},{},{}\n", i, rows[i].timestamp, d.keep ? 1 : 0, d.min_correlation,
-                 d.product, d.window, d.reason);
-    }
-  });
+std::string decisions_csv(const std::vector<DecisionRow>& rows) {
+  std::string csv = "index,timestamp,kept,min_correlation,product,window,reason\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ScanFilter::Decision& d = rows[i].decision;
+    fmt::format_to(std::back_inserter(csv), "{},{},{},{:.6f},{:.6f},{},{}\n", i, rows[i].timestamp, d.keep ? 1 : 0,
+                   d.min_correlation, d.product, d.window, d.reason);
+  }
+  return csv;
 }
 
 // A picture of the filter over time: one column per scan (or per group of
@@ -67,7 +66,7 @@ void write_decisions(const std::string& path, const std::vector<DecisionRow>& ro
 // dark grey, dropped scans in red. Bottom band: the share of each column's
 // scans that were dropped, from white (none) to red (all), and in black the
 // drop ratio over the last 100 scans (bottom 0, top 1; grey line at 0.5).
-void write_plot(const std::string& path, const std::vector<DecisionRow>& rows, double pair_threshold) {
+Image filter_plot(const std::vector<DecisionRow>& rows, double pair_threshold) {
   constexpr int kWidth = 1600, kPanel = 360, kBand = 60, kGap = 10;
   constexpr std::size_t kRunning = 100;
   Image img{kWidth, kPanel + kGap + kBand, {}};
@@ -114,14 +113,17 @@ void write_plot(const std::string& path, const std::vector<DecisionRow>& rows, d
       img.at(x, yy) = ink;
     last_y = y;
   }
-  write_png(path, img);
+  return img;
 }
 
 void run_filter(FilterArgs& a) {
+  check_output_file(a.out, "--out");  // before the (slow) read
+  if (!a.decisions.empty()) check_output_file(a.decisions, "--decisions");
+  if (!a.plot.empty()) check_output_file(a.plot, "--plot");
   a.config.statistic = a.statistic == "mean" ? HistogramStatistic::mean : HistogramStatistic::median;
   a.config.binning = a.binning == "distance" ? HistogramBinning::distance : HistogramBinning::sector;
   a.config.common_threshold = a.common_threshold;
-  ScanFilter filter(a.config);  // validates before the (slow) read
+  ScanFilter filter(a.config);  // validates before the read
 
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
@@ -162,12 +164,15 @@ void run_filter(FilterArgs& a) {
                                                            log.scans.front().ranges.size())
                                              : std::to_string(c.columns);
   const std::string common = c.common_threshold ? fmt::format("{}", *c.common_threshold) : "P_pair^window";
-  write_carmen(a.out, kept,
-               fmt::format("dsswarm filter of {}: kept {} of {} scans\ncolumns {}, {}, {} binning, P_pair {}, "
-                           "P_common {}",
-                           a.log, kept.size(), read_count, columns, a.statistic, a.binning, c.pair_threshold, common));
-  if (!a.decisions.empty()) write_decisions(a.decisions, rows);
-  if (!a.plot.empty()) write_plot(a.plot, rows, c.pair_threshold);
+  OutputFiles files;
+  files.add(a.out, format_carmen(a.out, kept,
+                                 fmt::format("dsswarm filter of {}: kept {} of {} scans\ncolumns {}, {}, {} binning, "
+                                             "P_pair {}, P_common {}",
+                                             a.log, kept.size(), read_count, columns, a.statistic, a.binning,
+                                             c.pair_threshold, common)));
+  if (!a.decisions.empty()) files.add(a.decisions, decisions_csv(rows));
+  if (!a.plot.empty()) files.add(a.plot, encode_png(a.plot, filter_plot(rows, c.pair_threshold)));
+  files.write_all();
 
   fmt::print("scan filter: {} -> {}\n", a.log, a.out);
   fmt::print("  histogram: {} columns, {} of each {}, P_pair {}, P_common {}{}\n", columns,

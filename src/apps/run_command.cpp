@@ -4,7 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <filesystem>
+#include <cstdint>
 #include <memory>
 #include <optional>
 
@@ -14,6 +14,7 @@
 #include "config/config_json.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/maps/dsmap.hpp"
+#include "io/output_paths.hpp"
 
 namespace dsswarm {
 namespace {
@@ -47,7 +48,9 @@ void print_summary(const RunResult& r, const std::string& out) {
 }
 
 void run(const RunArgs& a) {
-  SlamConfig config = a.slam.resolve();  // config and map-file errors before any work
+  check_output_directory(a.out, "--out");  // output, config and map-file errors before any work
+  if (!a.save_map.empty()) check_output_file(a.save_map, "--save-map");
+  SlamConfig config = a.slam.resolve();
   std::optional<ContinuedMap> continued;
   if (!a.load_map.empty()) {
     continued = load_map_to_continue(a.load_map, config);
@@ -71,6 +74,7 @@ void run(const RunArgs& a) {
     for (auto& s : log.scans) s.laser_offset = parse_offset(a.laser_offset);
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  require_returns(log);
 
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same
@@ -85,12 +89,12 @@ void run(const RunArgs& a) {
   const RunResult result = run_slam(log, *slam);
   nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
   if (!a.load_map.empty()) stats["load_map"] = a.load_map;
-  write_run_outputs(a.out, result, *slam, stats);
+  OutputFiles files = run_output_files(a.out, result, *slam, stats);
   if (!a.save_map.empty()) {
-    const std::filesystem::path path(a.save_map);
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    write_dsmap(a.save_map, own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
+    const std::vector<std::uint8_t> map = encode_dsmap(own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
+    files.add(a.save_map, std::string(map.begin(), map.end()));
   }
+  files.write_all();
   print_summary(result, a.out);
 }
 

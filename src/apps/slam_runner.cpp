@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "common/errors.hpp"
@@ -73,27 +74,40 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   return j;
 }
 
+void require_returns(const SensorLog& log) {
+  const bool any = std::any_of(log.scans.begin(), log.scans.end(), [](const LaserScan& s) { return s.valid_count() > 0; });
+  if (!any && !log.scans.empty())
+    throw InputError(fmt::format("{}: no scan has a valid return: every reading of the {} scans is NaN, inf, at or "
+                                 "below the minimum range or at or beyond the maximum range ({} m): nothing to map",
+                                 log.source, log.scans.size(), log.scans.front().range_max));
+}
+
+OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
+                             const nlohmann::json& stats, const Trajectory* ground_truth) {
+  const GridRaster raster = slam.map().finest().to_raster();
+  if (raster.width == 0)
+    throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
+  OutputFiles files;
+  files.add(dir / "trajectory.tum", format_tum(dir / "trajectory.tum", result.trajectory));
+  add_map_server(files, dir / "map.yaml", raster);
+  Image picture = render_map(raster, fitting_scale(raster));
+  auto path_of = [](const Trajectory& t) {
+    std::vector<Eigen::Vector2d> pts;
+    pts.reserve(t.size());
+    for (const auto& p : t) pts.push_back(p.pose.translation());
+    return pts;
+  };
+  if (ground_truth) draw_polyline(picture, raster, path_of(*ground_truth), Rgb{40, 170, 60}, 1);
+  draw_polyline(picture, raster, path_of(result.trajectory), agent_colour(0), 1);
+  if (!result.trajectory.empty()) draw_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 3);
+  files.add(dir / "map.png", encode_png(dir / "map.png", picture));
+  files.add(dir / "stats.json", stats.dump(2) + "\n");
+  return files;
+}
+
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                        const nlohmann::json& stats, const Trajectory* ground_truth) {
-  std::filesystem::create_directories(dir);
-  write_tum(dir / "trajectory.tum", result.trajectory);
-  const GridRaster raster = slam.map().finest().to_raster();
-  write_map_server(dir / "map.yaml", raster);
-
-  if (raster.width > 0) {
-    Image picture = render_map(raster, fitting_scale(raster));
-    auto path_of = [](const Trajectory& t) {
-      std::vector<Eigen::Vector2d> pts;
-      pts.reserve(t.size());
-      for (const auto& p : t) pts.push_back(p.pose.translation());
-      return pts;
-    };
-    if (ground_truth) draw_polyline(picture, raster, path_of(*ground_truth), Rgb{40, 170, 60}, 1);
-    draw_polyline(picture, raster, path_of(result.trajectory), agent_colour(0), 1);
-    if (!result.trajectory.empty()) draw_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 3);
-    write_png(dir / "map.png", picture);
-  }
-  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+  run_output_files(dir, result, slam, stats, ground_truth).write_all();
 }
 
 MapSnapshot own_map_snapshot(const Slam& slam, const std::string& sender, std::uint64_t previous_version) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.hpp"
 #include "io/trajectory/tum.hpp"
 #include "sensor/laser_scan.hpp"
 #include "slam/slam.hpp"
@@ -27,9 +28,17 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label = 
 // stats.json contents: the keys promised in the README.
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds);
 
-// Writes trajectory.tum, map.pgm + map.yaml (ROS map_server), map.png (map with
-// the trajectory, and `ground_truth` in another colour if given), stats.json.
-// Each file is written atomically; the directory is created if needed.
+// InputError naming the log unless some scan has a valid return: a log of
+// nothing but max-range readings would give an empty map.
+void require_returns(const SensorLog& log);
+
+// trajectory.tum, map.pgm + map.yaml (ROS map_server), map.png (map with the
+// trajectory, and `ground_truth` in another colour if given), stats.json, in
+// memory: InputError if the map is empty, before anything is written.
+OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
+                             const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
+
+// Writes run_output_files (all of them or none); the directory is created if needed.
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                        const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
 

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -12,6 +13,7 @@
 #include "eval/relations.hpp"
 #include "eval/swarm_eval.hpp"
 #include "io/atomic_file.hpp"
+#include "io/output_paths.hpp"
 #include "sim/proximity.hpp"
 #include "sim/swarm_sim.hpp"
 
@@ -36,6 +38,7 @@ void print_encounter_summary(const nlohmann::json& stats) {
 }
 
 void run_demo(const DemoArgs& a) {
+  check_output_directory(a.out, "--out");
   SwarmConfig config = a.slam.resolve_swarm();
   config.encounter.locate.search_radius = a.range;  // the proximity range bounds where the other robot is
   config.merge = !a.no_merge;
@@ -93,13 +96,21 @@ struct SwarmArgs {
 };
 
 void run_scenario(SwarmArgs a) {
+  check_output_directory(a.out, "--out");
   SwarmScenario scenario = load_swarm_scenario(a.scenario);
   for (const std::string& w : scenario.warnings) spdlog::warn("{}", w);
   if (a.slam.config_file.empty() && scenario.config) a.slam.config_file = *scenario.config;
   SwarmConfig config = a.slam.resolve_swarm();
   config.merge = !a.no_merge;
+  // Read before the run, so that a bad file cannot cost the outputs a complete set.
+  const std::vector<Relation> relations =
+      scenario.relations.empty() ? std::vector<Relation>{} : read_relations(scenario.relations);
   std::size_t scans = 0;
-  for (const AgentStream& s : scenario.streams) scans += s.scans.size();
+  for (const AgentStream& s : scenario.streams) {
+    scans += s.scans.size();
+    if (std::none_of(s.scans.begin(), s.scans.end(), [](const LaserScan& l) { return l.valid_count() > 0; }))
+      spdlog::warn("agent {}: none of its {} scans has a valid return: its map stays empty", s.name, s.scans.size());
+  }
   fmt::print("scenario {}: {} agents, {} scans, {} scripted encounters\n", scenario.name, scenario.streams.size(),
              scans, scenario.events.size());
   SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config, dsmap_transport());
@@ -112,7 +123,7 @@ void run_scenario(SwarmArgs a) {
     fmt::print("  t={:.1f} s {}–{}: {}\n", r.time, r.a, r.b, r.accepted ? "accepted" : "rejected: " + r.reason);
   if (!scenario.relations.empty()) {
     // The scenario names its relations: score the run right away.
-    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), read_relations(scenario.relations));
+    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), relations);
     const std::filesystem::path out(a.out);
     write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
     fmt::print("{}", format_swarm_evaluation(ev));

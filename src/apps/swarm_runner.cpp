@@ -78,16 +78,17 @@ std::unordered_set<std::int64_t> known_world_cells(const DsGrid& grid, const Pos
   return out;
 }
 
-// Writes STEM.{yaml,pgm} (nothing for an empty map) and returns the raster.
-GridRaster write_map_files(const std::filesystem::path& dir, const std::string& stem, const MultiResMap& map) {
+// Adds STEM.{yaml,pgm} (nothing for an empty map) and returns the raster.
+GridRaster add_map_files(OutputFiles& files, const std::filesystem::path& dir, const std::string& stem,
+                         const MultiResMap& map) {
   GridRaster raster = map.finest().to_raster();
-  if (raster.width > 0) write_map_server(dir / (stem + ".yaml"), raster);
+  if (raster.width > 0) add_map_server(files, dir / (stem + ".yaml"), raster);
   return raster;
 }
 
 // `raster`: the first agent's merged map.
-void draw_swarm_picture(const std::filesystem::path& path, const SwarmSession& s, const GridRaster& raster,
-                        const std::vector<std::optional<Pose2>>& frames) {
+void add_swarm_picture(OutputFiles& files, const std::filesystem::path& path, const SwarmSession& s,
+                       const GridRaster& raster, const std::vector<std::optional<Pose2>>& frames) {
   if (raster.width == 0) return;
   Image picture = render_map(raster, fitting_scale(raster));
   for (std::size_t i = 0; i < s.agents(); ++i) {
@@ -111,7 +112,7 @@ void draw_swarm_picture(const std::filesystem::path& path, const SwarmSession& s
       }
     }
   }
-  write_png(path, picture);
+  files.add(path, encode_png(path, picture));
 }
 
 }  // namespace
@@ -144,7 +145,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   if (truth && truth->world_poses.size() != s.agents())
     throw ConfigError("swarm outputs: ground truth for " + std::to_string(truth->world_poses.size()) +
                       " agents, but the session has " + std::to_string(s.agents()));
-  std::filesystem::create_directories(dir);
+  OutputFiles files;
   std::vector<std::optional<Pose2>> frames;
   for (std::size_t i = 0; i < s.agents(); ++i) frames.push_back(frame_in_reference(s, i));
 
@@ -157,24 +158,23 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   for (std::size_t i = 0; i < s.agents(); ++i) {
     const SwarmAgent& a = s.agent(i);
     const std::filesystem::path adir = dir / "agents" / a.name();
-    std::filesystem::create_directories(adir);
     const Trajectory own = own_trajectory(s.track(i));
-    write_tum(adir / "trajectory.tum", own);
-    write_map_files(adir, "map", a.slam().own_map());
-    GridRaster merged = write_map_files(adir, "merged_map", a.slam().map());
+    files.add(adir / "trajectory.tum", format_tum(adir / "trajectory.tum", own));
+    add_map_files(files, adir, "map", a.slam().own_map());
+    GridRaster merged = add_map_files(files, adir, "merged_map", a.slam().map());
     if (merged.width > 0) {
       Image picture = render_map(merged, fitting_scale(merged));
       std::vector<Eigen::Vector2d> pts;
       for (const auto& p : own) pts.push_back(p.pose.translation());
       draw_polyline(picture, merged, pts, agent_colour(static_cast<int>(i)), 1);
-      write_png(adir / "merged_map.png", picture);
+      files.add(adir / "merged_map.png", encode_png(adir / "merged_map.png", picture));
     }
     if (i == 0) first_merged = std::move(merged);
     if (frames[i]) {
       Trajectory joint = own;
       for (auto& p : joint) p.pose = *frames[i] * p.pose;
-      std::filesystem::create_directories(dir / "joint");
-      write_tum(dir / "joint" / (a.name() + ".tum"), joint);
+      const std::filesystem::path path = dir / "joint" / (a.name() + ".tum");
+      files.add(path, format_tum(path, joint));
     }
     nlohmann::json j;
     j["name"] = a.name();
@@ -191,7 +191,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     j["in_joint_frame"] = frames[i].has_value();
     if (truth && !own.empty() && !truth->world_poses[i].empty()) {
       const Trajectory& t = truth->world_poses[i];
-      write_tum(adir / "ground_truth.tum", t);
+      files.add(adir / "ground_truth.tum", format_tum(adir / "ground_truth.tum", t));
       j["ate_rmse"] = evaluate_ate(own, t).rmse;
       const Pose2 frame_in_world = truth_at(t, own.front().timestamp) * own.front().pose.inverse();
       auto own_cells = known_world_cells(a.slam().own_map().finest(), frame_in_world);
@@ -311,8 +311,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     bytes += static_cast<double>(r.bytes);
     list.push_back(std::move(e));
   }
-  write_file_atomically(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
-  draw_swarm_picture(dir / "swarm.png", s, first_merged, frames);
+  files.add(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
+  add_swarm_picture(files, dir / "swarm.png", s, first_merged, frames);
 
   nlohmann::json stats;
   stats["agents"] = agents;
@@ -333,7 +333,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     stats["worst_accepted_causal_error"] = {worst_causal_xy, worst_causal_theta};
     stats["wrong_merges"] = wrong;
   }
-  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+  files.add(dir / "stats.json", stats.dump(2) + "\n");
+  files.write_all();
   return stats;
 }
 

@@ -33,7 +33,7 @@ SnapshotTransport dsmap_transport();
 // Plays the session; returns the wall-clock seconds it took.
 double run_swarm_session(SwarmSession& session, const std::string& label);
 
-// Writes every output into `dir` (atomically, file by file) and returns stats.json's content.
+// Writes every output into `dir` (all of them or, on an error, none) and returns stats.json's content.
 nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const SwarmSession& session,
                                    double wall_seconds, const SwarmTruth* truth = nullptr);
 

@@ -141,7 +141,7 @@ TEST(FilterCommand, BadValuesAreConfigErrorsNamingTheField) {
   }
   EXPECT_THROW(run_cli({"filter", log.string(), "--out", out, "--columns", "1"}), ConfigError);
   EXPECT_THROW(run_cli({"filter", log.string(), "--out", out, "--statistic", "mode"}), CLI::ValidationError);
-  EXPECT_THROW(run_cli({"filter", (dir / "missing.log").string(), "--out", out}), CLI::ValidationError);
+  EXPECT_THROW(run_cli({"filter", (dir / "missing.log").string(), "--out", out}), InputError);  // input: exit 1
   EXPECT_FALSE(fs::exists(out));
 }
 

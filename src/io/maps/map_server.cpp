@@ -221,6 +221,13 @@ DsMass mass_for(std::int8_t value) {
 }  // namespace
 
 void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const MapServerOptions& options) {
+  OutputFiles files;
+  add_map_server(files, yaml_path, raster, options);
+  for (const OutputFiles::File& f : files.files()) write_file_atomically(f.path, f.contents);  // image first
+}
+
+void add_map_server(OutputFiles& files, const fs::path& yaml_path, const GridRaster& raster,
+                    const MapServerOptions& options) {
   check_thresholds(options);
   check_raster(raster, yaml_path);
   const std::string image_name = yaml_path.stem().string() + ".pgm";
@@ -243,8 +250,8 @@ void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const
       yaml_float(options.free_thresh));
 
   // Image first: a YAML that exists always points at a complete picture.
-  write_file_atomically(pgm_path, encode_pgm(raster, options));
-  write_file_atomically(yaml_path, yaml);
+  files.add(pgm_path, encode_pgm(raster, options));
+  files.add(yaml_path, yaml);
 }
 
 LoadedMap read_map_server(const fs::path& yaml_path) {

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "grid/grid_raster.hpp"
@@ -65,5 +66,8 @@ Rgb agent_colour(int index);
 // 8-bit RGB PNG, written atomically. InputError (naming the file) for an empty
 // or inconsistent image, a libpng failure, or a file that cannot be written.
 void write_png(const std::filesystem::path& path, const Image& image);
+
+// The bytes write_png writes; errors name `path`.
+std::string encode_png(const std::filesystem::path& path, const Image& image);
 
 }  // namespace dsswarm
