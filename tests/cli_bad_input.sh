@@ -126,5 +126,31 @@ expect_error demo-robots 2 "robots" -- "$bin" demo --robots 0 --out "$tmp/s5"
 for d in s1 s2 s3 s4 s5 s6; do
   if [ -e "$tmp/$d" ] && [ -n "$(ls -A "$tmp/$d")" ]; then echo "FAIL: partial outputs left in $tmp/$d"; fails=$((fails + 1)); fi
 done
+
+# The swarm console says which scripted encounters could not run, and why.
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+printf 'agents:\n  - name: r1\n    log: small.log\n  - name: r2\n    log: small.log\n    start: 10\nencounters:\n  - agents: [r1, r2]\n    time: 1.5\n  - agents: [r1, r2]\n    time: 11.5\n' > "$tmp/late.yaml"
+out=$("$bin" swarm "$tmp/late.yaml" --out "$tmp/late" 2>/dev/null) || fail "swarm late.yaml: exit $?"
+grep -qF "2 scripted encounters: 1 run, 1 skipped (r2 had not started)" <<<"$out" || fail "swarm-skipped-encounters: $out"
+
+# demo: the README's default folder; a reused --out keeps no files of robots
+# that are gone (and every file that is not dsswarm's); a run without merges
+# says so instead of a worst merge error of 0.
+"$bin" demo --help | grep -q 'out/demo' || fail "demo --help: default --out is not out/demo"
+d=$tmp/demo; mkdir -p "$d"; echo mine > "$d/notes.txt"
+"$bin" demo --robots 2 --out "$d" >/dev/null 2>&1 || fail "demo --robots 2 failed"
+[ -f "$d/agents/robot2/trajectory.tum" ] && [ -f "$d/joint/robot2.tum" ] || fail "demo --robots 2: no robot2 outputs"
+grep -q 'verified; waiting' "$d/encounters.json" && fail "demo: a rejected encounter's reason reads 'verified'"
+grep -o '"reason": "[^"]*second encounter[^"]*"' "$d/encounters.json" | grep -v '"reason": "unconfirmed: ' && fail "demo: unconfirmed reason not saying so"
+echo mine > "$d/agents/robot2/notes.txt"
+out=$("$bin" demo --robots 1 --out "$d" 2>/dev/null) || fail "demo --robots 1 failed"
+grep -q 'worst accepted' <<<"$out" && fail "1-robot demo reports a worst accepted transform: $out"
+grep -q 'nothing was merged' <<<"$out" || fail "1-robot demo does not say nothing was merged: $out"
+for f in agents/robot2/trajectory.tum agents/robot2/merged_map.png joint/robot2.tum; do
+  [ -e "$d/$f" ] && fail "stale $f kept after the 1-robot demo"
+done
+[ -f "$d/notes.txt" ] && [ -f "$d/agents/robot2/notes.txt" ] || fail "a file dsswarm did not write was removed"
+[ -f "$d/agents/robot1/trajectory.tum" ] || fail "1-robot demo wrote no robot1 outputs"
+
 echo "$fails failed"
 [ $fails -eq 0 ]

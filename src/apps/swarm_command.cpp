@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include "apps/slam_options.hpp"
+#include "apps/swarm_report.hpp"
 #include "apps/swarm_runner.hpp"
 #include "apps/swarm_scenario.hpp"
 #include "eval/relations.hpp"
@@ -21,7 +23,7 @@ namespace dsswarm {
 namespace {
 
 struct DemoArgs {
-  std::string out = "demo_out";
+  std::string out = "out/demo";  // as README and scripts/demo.sh
   int robots = 3;
   std::uint64_t seed = 1;
   std::uint64_t world_seed = 1;
@@ -29,6 +31,20 @@ struct DemoArgs {
   bool no_merge = false;
   SlamOptions slam;
 };
+
+// Session time of each stream's first scan (inf for an empty stream).
+std::vector<double> first_clocks(const std::vector<AgentStream>& streams) {
+  std::vector<double> clocks;
+  for (const AgentStream& s : streams)
+    clocks.push_back(s.clock.empty() ? std::numeric_limits<double>::infinity() : s.clock.front());
+  return clocks;
+}
+
+std::vector<std::string> names_of(const std::vector<AgentStream>& streams) {
+  std::vector<std::string> names;
+  for (const AgentStream& s : streams) names.push_back(s.name);
+  return names;
+}
 
 void print_encounter_summary(const nlohmann::json& stats) {
   fmt::print("{} encounters, {} accepted; mean match {:.0f} ms, merge {:.0f} ms, {:.0f} kB exchanged\n",
@@ -70,16 +86,24 @@ void run_demo(const DemoArgs& a) {
   for (const ProximityEvent& e : near)
     events.push_back({e.time, static_cast<std::size_t>(e.a), static_cast<std::size_t>(e.b)});
 
+  const std::vector<std::string> names = names_of(streams);
+  const std::vector<double> starts = first_clocks(streams);
+  const std::vector<EncounterEvent> planned = events;
   SwarmSession session(std::move(streams), std::move(events), config, dsmap_transport());
   const double seconds = run_swarm_session(session, "demo");
   const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds, &truth);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
+  fmt::print("{}\n", describe_encounter_events("proximity events", planned, names, starts, session.encounters(), config));
   for (const auto& agent : stats["agents"])
     fmt::print("  {}: ATE RMSE {:.3f} m, map covers {:.0f}% of what the swarm explored, knows {} other robot(s)\n",
                agent["name"].get<std::string>(), agent["ate_rmse"].get<double>(),
                100.0 * agent["coverage"].get<double>(), agent["knows"].size());
+  if (stats["encounters_accepted"].get<std::size_t>() == 0) {
+    fmt::print("nothing was merged: no encounter was accepted\n");
+    return;
+  }
   fmt::print("worst accepted transform error {:.3f} m / {:.2f}° against the map frames as they stood (causal), "
              "{:.3f} m / {:.2f}° against the robots' true relative pose; {} wrong merges (> 0.3 m or 3° against both "
              "the robots' true relative pose and the aligned frames)\n",
@@ -113,12 +137,17 @@ void run_scenario(SwarmArgs a) {
   }
   fmt::print("scenario {}: {} agents, {} scans, {} scripted encounters\n", scenario.name, scenario.streams.size(),
              scans, scenario.events.size());
+  const std::vector<std::string> names = names_of(scenario.streams);
+  const std::vector<double> starts = first_clocks(scenario.streams);
+  const std::vector<EncounterEvent> planned = scenario.events;
   SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config, dsmap_transport());
   const double seconds = run_swarm_session(session, scenario.name);
   const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
+  fmt::print("{}\n",
+             describe_encounter_events("scripted encounters", planned, names, starts, session.encounters(), config));
   for (const EncounterRecord& r : session.encounters())
     fmt::print("  t={:.1f} s {}–{}: {}\n", r.time, r.a, r.b, r.accepted ? "accepted" : "rejected: " + r.reason);
   if (!scenario.relations.empty()) {

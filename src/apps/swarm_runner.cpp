@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "apps/slam_runner.hpp"
+#include "apps/stale_outputs.hpp"
 #include "common/errors.hpp"
 #include "config/config_json.hpp"
 #include "eval/ate.hpp"
@@ -145,6 +146,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   if (truth && truth->world_poses.size() != s.agents())
     throw ConfigError("swarm outputs: ground truth for " + std::to_string(truth->world_poses.size()) +
                       " agents, but the session has " + std::to_string(s.agents()));
+  const std::vector<std::filesystem::path> previous = previous_swarm_outputs(dir);
   OutputFiles files;
   std::vector<std::optional<Pose2>> frames;
   for (std::size_t i = 0; i < s.agents(); ++i) frames.push_back(frame_in_reference(s, i));
@@ -335,6 +337,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   }
   files.add(dir / "stats.json", stats.dump(2) + "\n");
   files.write_all();
+  remove_stale_outputs(dir, previous, files);
   return stats;
 }
 

@@ -8,6 +8,8 @@
 //   encounters.json                    one entry per encounter (and, simulated, its true error)
 //   swarm.png                          first agent's merged map, all trajectories, encounters
 //   stats.json                         per-agent and per-encounter figures
+// A reused folder keeps no files of agents the earlier run had and this one
+// has not (stale_outputs.hpp); files dsswarm did not write stay.
 #include <filesystem>
 #include <optional>
 #include <string>

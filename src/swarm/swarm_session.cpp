@@ -125,7 +125,7 @@ void SwarmSession::encounter(const EncounterEvent& e) {
     if (r.confirmed_by.empty()) {
       pending.push_back(stored(t));
       r.accepted = false;
-      r.reason = "verified; waiting for a second encounter to confirm it";
+      r.reason = "unconfirmed: the placement verified, merging waits for a second encounter that agrees";
     }
   }
   if (r.accepted) {

@@ -1,0 +1,108 @@
+// Swarm outputs in a reused folder, and the console's account of the encounter events.
+#include "apps/swarm_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+
+#include "apps/stale_outputs.hpp"
+#include "apps/swarm_report.hpp"
+#include "common/test_files.hpp"
+#include "sim/scenario.hpp"
+
+namespace dsswarm {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<AgentStream> streams(const std::vector<std::string>& names) {
+  SimulatedRun sim = simulate_demo(DemoConfig{});
+  sim.log.scans.resize(40);
+  std::vector<AgentStream> out;
+  for (const std::string& name : names) {
+    AgentStream s{name, sim.log.scans, {}};
+    for (const LaserScan& scan : s.scans) s.clock.push_back(scan.timestamp);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+void write_session(const fs::path& dir, const std::vector<std::string>& names) {
+  SwarmSession session(streams(names), {}, SwarmConfig{});
+  session.run();
+  write_swarm_outputs(dir, session, 1.0);
+}
+
+std::vector<fs::path> files_under(const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files.push_back(e.path());
+  return files;
+}
+
+TEST(SwarmOutputs, ReusedFolderKeepsNoFilesOfAgentsThatAreGoneAndEveryOtherFile) {
+  const fs::path dir = test::fresh_dir("swarm_outputs_reused");
+  write_session(dir, {"a", "b"});
+  // Everything dsswarm wrote per agent is known to the clean-up.
+  const std::vector<fs::path> known = previous_swarm_outputs(dir);
+  for (const fs::path& f : files_under(dir)) {
+    const std::string rel = fs::relative(f, dir).string();
+    if (rel.starts_with("agents/") || rel.starts_with("joint/")) {
+      EXPECT_NE(std::find(known.begin(), known.end(), f), known.end()) << rel << " would be left behind";
+    }
+  }
+  ASSERT_TRUE(fs::exists(dir / "agents" / "b" / "trajectory.tum"));
+  test::write_text(dir / "agents" / "b" / "notes.txt", "mine");
+  test::write_text(dir / "notes.txt", "mine");
+  test::write_text(dir / "agents" / "c.txt", "mine");
+
+  write_session(dir, {"a"});
+  EXPECT_TRUE(fs::exists(dir / "agents" / "a" / "trajectory.tum"));
+  for (const char* f : {"trajectory.tum", "map.yaml", "map.pgm", "merged_map.png"})
+    EXPECT_FALSE(fs::exists(dir / "agents" / "b" / f)) << f;
+  EXPECT_TRUE(fs::exists(dir / "agents" / "b" / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir / "agents" / "c.txt"));
+
+  fs::remove(dir / "agents" / "b" / "notes.txt");
+  write_session(dir, {"a"});  // b is not in stats.json any more: its empty folder stays
+  write_session(dir, {"b"});
+  write_session(dir, {"a"});
+  EXPECT_FALSE(fs::exists(dir / "agents" / "b"));  // emptied by dsswarm, so removed
+}
+
+TEST(SwarmOutputs, StatsJsonThatNamesNoAgentsRemovesNothing) {
+  const fs::path dir = test::fresh_dir("swarm_outputs_foreign");
+  test::write_text(dir / "stats.json", R"({"agents": [{"name": "../../etc"}, {"name": 3}]})");
+  EXPECT_TRUE(previous_swarm_outputs(dir).empty());
+  test::write_text(dir / "stats.json", "not json");
+  EXPECT_TRUE(previous_swarm_outputs(dir).empty());
+}
+
+TEST(SwarmReport, SkippedEventsSayWhy) {
+  const std::vector<std::string> names = {"robot1", "robot2", "robot3"};
+  const std::vector<double> starts = {0.0, 5.0, std::numeric_limits<double>::infinity()};
+  SwarmConfig config;
+  config.remerge_interval = 10.0;
+  const std::vector<EncounterEvent> events = {{1.0, 0, 1}, {6.0, 0, 1}, {8.0, 0, 1}, {30.0, 1, 2}, {20.0, 1, 0}};
+  EncounterRecord at6, at20;
+  at6.time = 6.0, at6.a = "robot1", at6.b = "robot2", at6.accepted = true;
+  at20.time = 20.0, at20.a = "robot2", at20.b = "robot1";
+  EXPECT_EQ(describe_encounter_events("scripted encounters", events, names, starts, {at6, at20}, config),
+            "5 scripted encounters: 2 run, 3 skipped (robot2 had not started: 1; robot1 and robot2 merged less "
+            "than 10 s before: 1; robot3 had not started: 1)");
+  EXPECT_EQ(describe_encounter_events("proximity events", {{7.0, 0, 1}}, names, starts, {}, config),
+            "1 proximity events: 0 run, 1 skipped (not run)");
+  config.merge = false;
+  EXPECT_EQ(describe_encounter_events("scripted encounters", events, names, starts, {}, config),
+            "5 scripted encounters: 0 run, 5 skipped (merging is off)");
+  EXPECT_EQ(describe_encounter_events("scripted encounters", {}, names, starts, {}, config), "0 scripted encounters");
+  at6.accepted = false;
+  EXPECT_EQ(describe_encounter_events("scripted encounters", {{6.0, 0, 1}}, names, starts, {at6}, config),
+            "1 scripted encounters: 1 run");
+}
+
+}  // namespace
+}  // namespace dsswarm
