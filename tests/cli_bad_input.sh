@@ -61,11 +61,21 @@ expect_error dsmap-corrupt 1 "corrupt.dsmap: checksum mismatch" -- "$bin" run "$
 expect_error dsmap-truncated 1 "cut.dsmap: truncated" -- "$bin" run "$tmp/small.log" --out "$tmp/o11" --load-map "$tmp/cut.dsmap"
 expect_error dsmap-not-a-map 1 "text.dsmap: not a .dsmap file" -- "$bin" run "$tmp/small.log" --out "$tmp/o12" --load-map "$tmp/text.dsmap"
 expect_error dsmap-resolution 1 "good.dsmap: the map has resolution 0.05 m" -- "$bin" run "$tmp/small.log" --out "$tmp/o13" --load-map "$tmp/good.dsmap" --resolution 0.1
-expect_error bad-start-pose 2 "--start-pose" -- "$bin" run "$tmp/small.log" --out "$tmp/o14" --load-map "$tmp/good.dsmap" --start-pose 1,2
-expect_error start-pose-alone 2 "load-map" -- "$bin" run "$tmp/small.log" --out "$tmp/o15" --start-pose 0,0,0
-if ! "$bin" run "$tmp/small.log" --out "$tmp/ok2" --load-map "$tmp/good.dsmap" --start-pose 0.05,0,0 >/dev/null 2>&1; then
+expect_error bad-start-pose 2 "--start-pose" -- "$bin" run "$tmp/small.log" --out "$tmp/o14" --load-map "$tmp/good.dsmap" --start-pose 1 2
+expect_error start-pose-commas 2 "--start-pose" -- "$bin" run "$tmp/small.log" --out "$tmp/o14" --load-map "$tmp/good.dsmap" --start-pose 1,2,3
+expect_error start-pose-nan 2 "--start-pose" -- "$bin" run "$tmp/small.log" --out "$tmp/o14" --load-map "$tmp/good.dsmap" --start-pose nan 0 0
+expect_error start-pose-alone 2 "load-map" -- "$bin" run "$tmp/small.log" --out "$tmp/o15" --start-pose 0 0 0
+# --start-pose X Y THETA like --laser-offset X Y THETA; --load-map says what it loaded.
+if ! out=$("$bin" run "$tmp/small.log" --out "$tmp/ok2" --load-map "$tmp/good.dsmap" --start-pose 0.05 0 0 2>/dev/null); then
   echo "FAIL load-map: a valid map was refused"; fails=$((fails + 1))
+elif ! grep -q "^loaded map $tmp/good.dsmap: layer 0 of 1 ('robot', version 3), 3 levels, 0.05 m cells, [0-9]* cells allocated, [0-9.]* m x [0-9.]* m$" <<<"$out"; then
+  echo "FAIL load-map: no line saying what was loaded:"; echo "$out"; fails=$((fails + 1))
 fi
+# --help shows the defaults of the SLAM options.
+help=$("$bin" run --help)
+for o in "--seed[^=]*=1 " "--evaluations[^=]*=240" "--resolution[^=]*=0.05"; do
+  grep -q -- "$o" <<<"$help" || { echo "FAIL run --help: no default for '$o'"; fails=$((fails + 1)); }
+done
 # Output locations are checked before any work (the logs here are corrupt: the
 # error must be about the output), never naming a temporary file.
 mkdir -p "$tmp/a_dir"; : > "$tmp/a_file"

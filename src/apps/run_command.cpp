@@ -30,17 +30,12 @@ struct RunArgs {
   std::vector<double> laser_offset;
   std::string save_map;    // .dsmap written at the end (the robot's own map)
   std::string load_map;    // .dsmap to continue mapping in
-  std::string start_pose;  // "x,y,theta" in the loaded map's frame
+  std::vector<double> start_pose;  // x y theta in the loaded map's frame
   SlamOptions slam;
 };
 
 // Name of the robot in the maps it saves (`run` maps one robot).
 constexpr const char* kRobotName = "robot";
-
-Pose2 parse_offset(const std::vector<double>& v) {
-  if (v.size() != 3) throw ConfigError("--laser-offset takes three numbers: x y theta");
-  return {v[0], v[1], v[2]};
-}
 
 void print_summary(const RunResult& r, const std::string& out) {
   fmt::print("{} scans, {} matched, {:.2f} s, {:.0f} scans/s; outputs in {}\n", r.scans_read, r.scans_matched,
@@ -55,9 +50,12 @@ void run(const RunArgs& a) {
   if (!a.load_map.empty()) {
     continued = load_map_to_continue(a.load_map, config);
     for (const auto& w : continued->warnings) spdlog::warn("{}", w);
+    fmt::print("loaded map {}: {}\n", a.load_map, continued->description);
   }
   const std::optional<Pose2> start_pose =
-      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(parse_pose_option(a.start_pose, "--start-pose"));
+      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(pose_option(a.start_pose, "--start-pose"));
+  const std::optional<Pose2> laser_offset =
+      a.laser_offset.empty() ? std::nullopt : std::optional<Pose2>(pose_option(a.laser_offset, "--laser-offset"));
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
@@ -65,13 +63,13 @@ void run(const RunArgs& a) {
   read.odom_topic_named = a.odom_topic_named;
   if (a.beams == "classic") read.carmen.beams = CarmenOptions::BeamConvention::Classic;
   if (a.beams == "span180") read.carmen.beams = CarmenOptions::BeamConvention::Span180;
-  if (!a.laser_offset.empty()) read.carmen.laser_offset = parse_offset(a.laser_offset);
+  read.carmen.laser_offset = laser_offset;
 
   const auto t0 = std::chrono::steady_clock::now();
   SensorLog log = read_log(a.log, read);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!a.laser_offset.empty())  // bags too: the flag overrides whatever the log says
-    for (auto& s : log.scans) s.laser_offset = parse_offset(a.laser_offset);
+  if (laser_offset)  // bags too: the flag overrides whatever the log says
+    for (auto& s : log.scans) s.laser_offset = *laser_offset;
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
   require_returns(log);
@@ -112,14 +110,15 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--beams", args->beams, "CARMEN beam angles: params (# PARAM lines, else classic), classic, span180")
       ->check(CLI::IsMember({"params", "classic", "span180"}))
       ->capture_default_str();
-  cmd->add_option("--laser-offset", args->laser_offset, "Laser pose on the robot: x y theta (m, m, rad)")
+  cmd->add_option("--laser-offset", args->laser_offset, "Laser pose on the robot: X Y THETA (m, m, rad)")
       ->expected(3);
   cmd->add_option("--save-map", args->save_map, "Write the robot's map at the end of the run (.dsmap, see README)");
   CLI::Option* load = cmd->add_option("--load-map", args->load_map,
                                       "Continue mapping in a saved map (.dsmap; layer 0, with the file's evidence model)");
   cmd->add_option("--start-pose", args->start_pose,
-                  "With --load-map: robot pose at the first scan in the map's frame, x,y,theta (m, m, rad); "
+                  "With --load-map: robot pose at the first scan in the map's frame, X Y THETA (m, m, rad); "
                   "default: the first scan's odometry pose")
+      ->expected(3)
       ->needs(load);
   add_slam_options(*cmd, args->slam);
   cmd->callback([args, odom_topic] {

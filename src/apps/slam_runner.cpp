@@ -127,7 +127,7 @@ ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config) {
     throw InputError(fmt::format("{}: the map has resolution {} m and {} levels, the configuration {} m and {} levels "
                                  "(set map.resolution / map.levels or --resolution to match the file)",
                                  path, file.resolution, file.levels, config.map.resolution, config.map.levels));
-  ContinuedMap result{MultiResMap(), layer.version, {}};
+  ContinuedMap result{MultiResMap(), layer.version, {}, {}};
   if (snapshot.layers.size() > 1)
     result.warnings.push_back(fmt::format("{}: {} layers; continuing in layer 0 ('{}', the sender's own map) only",
                                           path, snapshot.layers.size(), layer.origin));
@@ -144,6 +144,11 @@ ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config) {
   config.map.evidence = file.evidence;
   result.map = MultiResMap(config.map);
   for (int l = 0; l < result.map.levels(); ++l) result.map.mutable_level(l) = layer.map->level(l);
+  const GridRaster extent = result.map.finest().to_raster();
+  result.description = fmt::format(
+      "layer 0 of {} ('{}', version {}), {} levels, {} m cells, {} cells allocated, {:.1f} m x {:.1f} m",
+      snapshot.layers.size(), layer.origin, layer.version, file.levels, file.resolution,
+      result.map.cells_allocated(), extent.width * extent.resolution, extent.height * extent.resolution);
   return result;
 }
 

@@ -52,6 +52,8 @@ struct ContinuedMap {
   MultiResMap map;                    // layer 0 of the file, with `config`'s insertion settings
   std::uint64_t version = 0;          // the layer's version (scans already in it)
   std::vector<std::string> warnings;  // extra layers ignored, evidence model taken from the file
+  // What was loaded, one line: layer, version, levels, resolution, cells, extent.
+  std::string description;
 };
 
 // Reads layer 0 of the .dsmap file `path`. Throws InputError naming the file
