@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "apps/filter_plot.hpp"
 #include "common/errors.hpp"
 #include "filter/scan_filter.hpp"
 #include "io/atomic_file.hpp"
@@ -45,11 +46,6 @@ struct FilterArgs {
   ScanFilterConfig config;
 };
 
-struct DecisionRow {
-  double timestamp;
-  ScanFilter::Decision decision;
-};
-
 std::string decisions_csv(const std::vector<DecisionRow>& rows) {
   std::string csv = "index,timestamp,kept,min_correlation,product,window,reason\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -58,62 +54,6 @@ std::string decisions_csv(const std::vector<DecisionRow>& rows) {
                    d.min_correlation, d.product, d.window, d.reason);
   }
   return csv;
-}
-
-// A picture of the filter over time: one column per scan (or per group of
-// scans on long logs). Top panel: the smallest correlation with the window,
-// from 0.8 (bottom) to 1.0 (top), with P_pair as a blue line; kept scans in
-// dark grey, dropped scans in red. Bottom band: the share of each column's
-// scans that were dropped, from white (none) to red (all), and in black the
-// drop ratio over the last 100 scans (bottom 0, top 1; grey line at 0.5).
-Image filter_plot(const std::vector<DecisionRow>& rows, double pair_threshold) {
-  constexpr int kWidth = 1600, kPanel = 360, kBand = 60, kGap = 10;
-  constexpr std::size_t kRunning = 100;
-  Image img{kWidth, kPanel + kGap + kBand, {}};
-  img.pixels.assign(static_cast<std::size_t>(img.width) * img.height, Rgb{255, 255, 255});
-  const Rgb kept{70, 70, 70}, dropped{220, 40, 40}, threshold{40, 90, 220}, grid{225, 225, 225}, ink{0, 0, 0};
-  auto y_of = [&](double c) {
-    const double t = std::clamp((c - 0.8) / 0.2, 0.0, 1.0);
-    return static_cast<int>(std::lround((1.0 - t) * (kPanel - 1)));
-  };
-  auto band_y = [&](double share) {
-    return kPanel + kGap + static_cast<int>(std::lround((1.0 - std::clamp(share, 0.0, 1.0)) * (kBand - 1)));
-  };
-  for (double g = 0.8; g <= 1.0001; g += 0.05)
-    for (int x = 0; x < kWidth; ++x) img.at(x, y_of(g)) = grid;
-  for (int x = 0; x < kWidth; ++x) img.at(x, y_of(pair_threshold)) = threshold;
-  const std::size_t n = rows.size();
-  std::vector<int> scans_in(kWidth, 0), drops_in(kWidth, 0);
-  std::vector<double> running(kWidth, -1.0);  // drop ratio over the last kRunning scans, at the column's last scan
-  std::size_t recent_drops = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int x = static_cast<int>(static_cast<double>(i) * kWidth / static_cast<double>(std::max<std::size_t>(n, 1)));
-    const ScanFilter::Decision& d = rows[i].decision;
-    const int y = y_of(d.min_correlation);
-    for (int dy = -1; dy <= 1; ++dy)
-      if (y + dy >= 0 && y + dy < kPanel) img.at(x, y + dy) = d.keep ? kept : dropped;
-    ++scans_in[x];
-    if (!d.keep) ++drops_in[x], ++recent_drops;
-    if (i >= kRunning && !rows[i - kRunning].decision.keep) --recent_drops;
-    running[x] = static_cast<double>(recent_drops) / static_cast<double>(std::min(i + 1, kRunning));
-  }
-  for (int x = 0; x < kWidth; ++x) {
-    if (scans_in[x] == 0) continue;
-    const double share = static_cast<double>(drops_in[x]) / scans_in[x];
-    auto mix = [share](int white, int red) { return static_cast<std::uint8_t>(std::lround(white + share * (red - white))); };
-    const Rgb shade{mix(255, dropped.r), mix(255, dropped.g), mix(255, dropped.b)};
-    for (int yy = kPanel + kGap; yy < img.height; ++yy) img.at(x, yy) = shade;
-    img.at(x, band_y(0.5)) = grid;
-  }
-  int last_y = -1;
-  for (int x = 0; x < kWidth; ++x) {
-    if (running[x] < 0.0) continue;
-    const int y = band_y(running[x]);
-    for (int yy = last_y < 0 ? y : std::min(y, last_y); yy <= (last_y < 0 ? y : std::max(y, last_y)); ++yy)
-      img.at(x, yy) = ink;
-    last_y = y;
-  }
-  return img;
 }
 
 void run_filter(FilterArgs& a) {

@@ -9,6 +9,7 @@
 #include "common/errors.hpp"
 #include "config/config_json.hpp"
 #include "io/atomic_file.hpp"
+#include "io/maps/annotate.hpp"
 #include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"
 #include "io/maps/render.hpp"
@@ -16,6 +17,8 @@
 namespace dsswarm {
 
 using Clock = std::chrono::steady_clock;
+
+constexpr Rgb kGroundTruthColour{40, 170, 60};
 
 std::size_t peak_rss_bytes() {
   rusage usage{};
@@ -97,9 +100,18 @@ OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& 
     for (const auto& p : t) pts.push_back(p.pose.translation());
     return pts;
   };
-  if (ground_truth) draw_polyline(picture, raster, path_of(*ground_truth), Rgb{40, 170, 60}, 1);
-  draw_polyline(picture, raster, path_of(result.trajectory), agent_colour(0), 1);
-  if (!result.trajectory.empty()) draw_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 3);
+  std::vector<LegendEntry> legend;
+  if (ground_truth) {
+    draw_path(picture, raster, path_of(*ground_truth), kGroundTruthColour);
+    legend.push_back({"ground truth", kGroundTruthColour});
+  }
+  draw_path(picture, raster, path_of(result.trajectory), agent_colour(0));
+  legend.push_back({"trajectory", agent_colour(0)});
+  if (!result.trajectory.empty()) {
+    draw_ringed_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 4);
+    legend.push_back({"start", agent_colour(0), LegendEntry::Mark::Disc});
+  }
+  picture = with_legend(picture, raster.resolution * raster.width / picture.width, legend);
   files.add(dir / "map.png", encode_png(dir / "map.png", picture));
   files.add(dir / "stats.json", stats.dump(2) + "\n");
   return files;

@@ -9,10 +9,12 @@
 
 #include "apps/slam_runner.hpp"
 #include "apps/stale_outputs.hpp"
+#include "apps/swarm_picture.hpp"
 #include "common/errors.hpp"
 #include "config/config_json.hpp"
 #include "eval/ate.hpp"
 #include "io/atomic_file.hpp"
+#include "io/maps/annotate.hpp"
 #include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"
 #include "io/maps/render.hpp"
@@ -87,35 +89,6 @@ GridRaster add_map_files(OutputFiles& files, const std::filesystem::path& dir, c
   return raster;
 }
 
-// `raster`: the first agent's merged map.
-void add_swarm_picture(OutputFiles& files, const std::filesystem::path& path, const SwarmSession& s,
-                       const GridRaster& raster, const std::vector<std::optional<Pose2>>& frames) {
-  if (raster.width == 0) return;
-  Image picture = render_map(raster, fitting_scale(raster));
-  for (std::size_t i = 0; i < s.agents(); ++i) {
-    if (!frames[i]) continue;
-    std::vector<Eigen::Vector2d> pts;
-    for (const SlamStep& step : s.track(i).steps) pts.push_back(*frames[i] * step.pose.translation());
-    draw_polyline(picture, raster, pts, agent_colour(static_cast<int>(i)), 1);
-    if (!pts.empty()) draw_marker(picture, raster, pts.front(), agent_colour(static_cast<int>(i)), 3);
-  }
-  // Encounters where agent 0's frame can place robot a: filled black when
-  // accepted, red ring when rejected.
-  for (const EncounterRecord& r : s.encounters()) {
-    for (std::size_t i = 0; i < s.agents(); ++i) {
-      if (s.agent(i).name() != r.a || !frames[i]) continue;
-      const Eigen::Vector2d at = *frames[i] * r.a_pose_in_a.translation();
-      if (r.accepted) {
-        draw_marker(picture, raster, at, Rgb{0, 0, 0}, 5);
-      } else {
-        draw_marker(picture, raster, at, Rgb{220, 30, 30}, 5);
-        draw_marker(picture, raster, at, Rgb{255, 255, 255}, 3);
-      }
-    }
-  }
-  files.add(path, encode_png(path, picture));
-}
-
 }  // namespace
 
 SnapshotTransport dsmap_transport() {
@@ -168,7 +141,9 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
       Image picture = render_map(merged, fitting_scale(merged));
       std::vector<Eigen::Vector2d> pts;
       for (const auto& p : own) pts.push_back(p.pose.translation());
-      draw_polyline(picture, merged, pts, agent_colour(static_cast<int>(i)), 1);
+      draw_path(picture, merged, pts, agent_colour(static_cast<int>(i)));
+      picture = with_legend(picture, merged.resolution * merged.width / picture.width,
+                            {{a.name(), agent_colour(static_cast<int>(i)), LegendEntry::Mark::Line}});
       files.add(adir / "merged_map.png", encode_png(adir / "merged_map.png", picture));
     }
     if (i == 0) first_merged = std::move(merged);
@@ -314,7 +289,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     list.push_back(std::move(e));
   }
   files.add(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
-  add_swarm_picture(files, dir / "swarm.png", s, first_merged, frames);
+  if (first_merged.width > 0) files.add(dir / "swarm.png", encode_png(dir / "swarm.png", swarm_picture(s, first_merged, frames)));
 
   nlohmann::json stats;
   stats["agents"] = agents;

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "apps/stale_outputs.hpp"
+#include "apps/swarm_picture.hpp"
 #include "apps/swarm_report.hpp"
 #include "common/test_files.hpp"
 #include "sim/scenario.hpp"
@@ -79,6 +80,32 @@ TEST(SwarmOutputs, StatsJsonThatNamesNoAgentsRemovesNothing) {
   EXPECT_TRUE(previous_swarm_outputs(dir).empty());
   test::write_text(dir / "stats.json", "not json");
   EXPECT_TRUE(previous_swarm_outputs(dir).empty());
+}
+
+// swarm.png: a legend naming each robot in its colour and a scale bar in a
+// band under the map, and paths wider than a hairline.
+TEST(SwarmPicture, LegendScaleBarAndPathsAPersonCanTellApart) {
+  SwarmSession session(streams({"a", "b"}), {}, SwarmConfig{});
+  session.run();
+  const GridRaster raster = session.agent(0).slam().map().finest().to_raster();
+  const std::vector<std::optional<Pose2>> frames = {Pose2(), Pose2(0.5, 0.5, 0.0)};
+  const Image picture = swarm_picture(session, raster, frames);
+  const Image map = render_map(raster, fitting_scale(raster));
+  ASSERT_GT(picture.height, map.height);
+  auto count = [&](Rgb colour, int y0, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < picture.width; ++x) n += picture.at(x, y) == colour ? 1 : 0;
+    return n;
+  };
+  for (int i = 0; i < 2; ++i) EXPECT_GT(count(agent_colour(i), map.height, picture.height), 0) << "legend of agent " << i;
+  EXPECT_GT(count(Rgb{0, 0, 0}, map.height, picture.height), 100) << "scale bar and labels";
+  Image hairline = map;
+  std::vector<Eigen::Vector2d> path;
+  for (const SlamStep& step : session.track(1).steps) path.push_back(Pose2(0.5, 0.5, 0.0) * step.pose.translation());
+  draw_polyline(hairline, raster, path, agent_colour(1), 1);
+  const auto thin = std::count(hairline.pixels.begin(), hairline.pixels.end(), agent_colour(1));
+  EXPECT_GE(count(agent_colour(1), 0, map.height), 2 * thin) << "paths are hairlines";
 }
 
 TEST(SwarmReport, SkippedEventsSayWhy) {

@@ -108,7 +108,7 @@ TEST(FilterCommand, PlotIsAPngOfTheDecisionsOverTime) {
            (static_cast<unsigned char>(head[at + 2]) << 8) | static_cast<unsigned char>(head[at + 3]);
   };
   EXPECT_EQ(be32(16), 1600);
-  EXPECT_EQ(be32(20), 430);
+  EXPECT_EQ(be32(20), 590);
 }
 
 TEST(FilterCommand, OptionsReachTheFilter) {

@@ -59,6 +59,9 @@ void draw_polyline(Image& image, const GridRaster& frame, const std::vector<Eige
 // radius must be 0..1000 (else ConfigError).
 void draw_marker(Image& image, const GridRaster& frame, const Eigen::Vector2d& world, Rgb colour, int radius);
 
+// draw_marker in pixel coordinates: a filled disc centred on (x, y), clipped.
+void fill_disc(Image& image, double x, double y, int radius, Rgb colour);
+
 // Eight colours that stay distinct from each other and from the grey map;
 // any index (negative too) wraps around the palette.
 Rgb agent_colour(int index);
