@@ -123,6 +123,28 @@ TEST(FilterCommand, OptionsReachTheFilter) {
   EXPECT_EQ(summary.at("scans_kept"), 5 + 5);
 }
 
+// `--config FILE` as for the other commands: the file's filter section, then the flags given.
+TEST(FilterCommand, ConfigFileSectionFilterThenFlags) {
+  const fs::path dir = fresh_dir("filter_cli_config");
+  const fs::path log = write_standing_log(dir);
+  const fs::path config = test::write_text(dir / "c.json", R"({"filter": {"max_consecutive_drops": 0, "min_window": 2}})");
+  const auto dropped = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"filter", log.string(), "--out", (dir / "kept.log").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return nlohmann::json::parse(last_line(run_cli(args))).at("scans_dropped").get<int>();
+  };
+  EXPECT_EQ(dropped({}), 25);
+  EXPECT_EQ(dropped({"--config", config.string()}), 0);                      // the file's 0 drops in a row
+  EXPECT_EQ(dropped({"--config", config.string(), "--max-drops", "5"}), 25);  // a flag beats the file
+  const fs::path typo = test::write_text(dir / "typo.json", R"({"filter": {"max_drops": 0}})");
+  try {
+    run_cli({"filter", log.string(), "--out", (dir / "kept.log").string(), "--config", typo.string()});
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_drops"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FilterCommand, BadValuesAreConfigErrorsNamingTheField) {
   const fs::path dir = fresh_dir("filter_cli_bad");
   const fs::path log = write_standing_log(dir);
