@@ -138,11 +138,11 @@ void run_filter(const FilterArgs& a) {
                                              : std::to_string(c.columns);
   const std::string common = c.common_threshold ? fmt::format("{}", *c.common_threshold) : "P_pair^window";
   OutputFiles files;
-  files.add(a.out, format_carmen(a.out, kept,
-                                 fmt::format("dsswarm filter of {}: kept {} of {} scans\ncolumns {}, {}, {} binning, "
-                                             "P_pair {}, P_common {}",
-                                             a.log, kept.size(), read_count, columns, name_of(c.statistic), name_of(c.binning),
-                                             c.pair_threshold, common)));
+  const std::string header =
+      fmt::format("dsswarm filter of {}: kept {} of {} scans\ncolumns {}, {}, {} binning, P_pair {}, P_common {}",
+                  a.log, kept.size(), read_count, columns, name_of(c.statistic), name_of(c.binning), c.pair_threshold,
+                  common);
+  files.add(a.out, format_carmen(a.out, kept, header));
   if (!a.decisions.empty()) files.add(a.decisions, decisions_csv(rows));
   if (!a.plot.empty()) files.add(a.plot, encode_png(a.plot, filter_plot(rows, c.pair_threshold)));
   files.write_all();

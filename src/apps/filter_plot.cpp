@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <tuple>
 
 #include "io/maps/annotate.hpp"
 
@@ -60,8 +62,8 @@ void draw_band(Image& img, const Columns& c) {
   for (int x = 0; x < kPlotWidth; ++x) {
     if (c.scans[x] == 0) continue;
     const double share = static_cast<double>(c.drops[x]) / c.scans[x];
-    auto mix = [share](int white, int red) { return static_cast<std::uint8_t>(std::lround(white + share * (red - white))); };
-    fill_rect(img, kLeft + x, kBandTop, 1, kBand, Rgb{mix(255, kDropped.r), mix(255, kDropped.g), mix(255, kDropped.b)});
+    auto mix = [share](int red) { return static_cast<std::uint8_t>(std::lround(255 + share * (red - 255))); };
+    fill_rect(img, kLeft + x, kBandTop, 1, kBand, Rgb{mix(kDropped.r), mix(kDropped.g), mix(kDropped.b)});
     img.at(kLeft + x, band_y(0.5)) = kGrid;
   }
   int last_y = -1;
@@ -107,9 +109,12 @@ void draw_axes(Image& img, std::size_t scans, double pair_threshold) {
     draw_text(img, x - text_width(label, kText) / 2, axis_y + 10, label, kInk, kText);
   }
   const std::string x_title = "scan index";
-  draw_text(img, kLeft + kPlotWidth - text_width(x_title, kText), axis_y + 12 + text_height(kText) + 6, x_title, kInk, kText);
-  draw_text_up(img, 12, kPanelTop + kPanel / 2 + text_width("min correlation", kText) / 2, "min correlation", kInk, kText);
-  draw_text_up(img, 12, kBandTop + kBand / 2 + text_width("dropped", kText) / 2, "dropped", kInk, kText);
+  draw_text(img, kLeft + kPlotWidth - text_width(x_title, kText), axis_y + 18 + text_height(kText), x_title, kInk,
+            kText);
+  // Axis titles read upwards, centred on their panel.
+  for (const auto& [title, top, height] : {std::tuple{"min correlation", kPanelTop, kPanel},
+                                           std::tuple{"dropped", kBandTop, kBand}})
+    draw_text_up(img, 12, top + height / 2 + text_width(title, kText) / 2, title, kInk, kText);
 }
 
 void draw_legends(Image& img, double pair_threshold) {

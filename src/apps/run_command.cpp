@@ -89,7 +89,8 @@ void run(const RunArgs& a) {
   if (!a.load_map.empty()) stats["load_map"] = a.load_map;
   OutputFiles files = run_output_files(a.out, result, *slam, stats);
   if (!a.save_map.empty()) {
-    const std::vector<std::uint8_t> map = encode_dsmap(own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
+    const std::vector<std::uint8_t> map =
+        encode_dsmap(own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
     files.add(a.save_map, std::string(map.begin(), map.end()));
   }
   files.write_all();

@@ -78,8 +78,8 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
 }
 
 void require_returns(const SensorLog& log) {
-  const bool any = std::any_of(log.scans.begin(), log.scans.end(), [](const LaserScan& s) { return s.valid_count() > 0; });
-  if (!any && !log.scans.empty())
+  const auto has_return = [](const LaserScan& s) { return s.valid_count() > 0; };
+  if (!log.scans.empty() && std::none_of(log.scans.begin(), log.scans.end(), has_return))
     throw InputError(fmt::format("{}: no scan has a valid return: every reading of the {} scans is NaN, inf, at or "
                                  "below the minimum range or at or beyond the maximum range ({} m): nothing to map",
                                  log.source, log.scans.size(), log.scans.front().range_max));

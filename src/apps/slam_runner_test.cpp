@@ -127,7 +127,8 @@ TEST(SlamOptions, PoseOptionIsThreeFiniteNumbers) {
   EXPECT_DOUBLE_EQ(p.y, -2.0);
   EXPECT_DOUBLE_EQ(p.theta, 0.25);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  for (const std::vector<double>& bad : std::vector<std::vector<double>>{{}, {1, 2}, {1, 2, 3, 4}, {nan, 0, 0}, {0, inf, 0}})
+  const std::vector<std::vector<double>> bad_values = {{}, {1, 2}, {1, 2, 3, 4}, {nan, 0, 0}, {0, inf, 0}};
+  for (const std::vector<double>& bad : bad_values)
     EXPECT_THROW(pose_option(bad, "--start-pose"), ConfigError) << bad.size() << " values";
 }
 

@@ -95,7 +95,8 @@ void run_demo(const DemoArgs& a) {
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
-  fmt::print("{}\n", describe_encounter_events("proximity events", planned, names, starts, session.encounters(), config));
+  fmt::print("{}\n",
+             describe_encounter_events("proximity events", planned, names, starts, session.encounters(), config));
   for (const auto& agent : stats["agents"])
     fmt::print("  {}: ATE RMSE {:.3f} m, map covers {:.0f}% of what the swarm explored, knows {} other robot(s)\n",
                agent["name"].get<std::string>(), agent["ate_rmse"].get<double>(),

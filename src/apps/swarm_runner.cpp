@@ -289,7 +289,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     list.push_back(std::move(e));
   }
   files.add(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
-  if (first_merged.width > 0) files.add(dir / "swarm.png", encode_png(dir / "swarm.png", swarm_picture(s, first_merged, frames)));
+  if (first_merged.width > 0)
+    files.add(dir / "swarm.png", encode_png(dir / "swarm.png", swarm_picture(s, first_merged, frames)));
 
   nlohmann::json stats;
   stats["agents"] = agents;

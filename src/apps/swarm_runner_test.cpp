@@ -98,7 +98,8 @@ TEST(SwarmPicture, LegendScaleBarAndPathsAPersonCanTellApart) {
       for (int x = 0; x < picture.width; ++x) n += picture.at(x, y) == colour ? 1 : 0;
     return n;
   };
-  for (int i = 0; i < 2; ++i) EXPECT_GT(count(agent_colour(i), map.height, picture.height), 0) << "legend of agent " << i;
+  for (int i = 0; i < 2; ++i)
+    EXPECT_GT(count(agent_colour(i), map.height, picture.height), 0) << "legend of agent " << i;
   EXPECT_GT(count(Rgb{0, 0, 0}, map.height, picture.height), 100) << "scale bar and labels";
   Image hairline = map;
   std::vector<Eigen::Vector2d> path;

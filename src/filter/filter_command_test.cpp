@@ -127,7 +127,8 @@ TEST(FilterCommand, OptionsReachTheFilter) {
 TEST(FilterCommand, ConfigFileSectionFilterThenFlags) {
   const fs::path dir = fresh_dir("filter_cli_config");
   const fs::path log = write_standing_log(dir);
-  const fs::path config = test::write_text(dir / "c.json", R"({"filter": {"max_consecutive_drops": 0, "min_window": 2}})");
+  const fs::path config =
+      test::write_text(dir / "c.json", R"({"filter": {"max_consecutive_drops": 0, "min_window": 2}})");
   const auto dropped = [&](const std::vector<std::string>& extra) {
     std::vector<std::string> args = {"filter", log.string(), "--out", (dir / "kept.log").string()};
     args.insert(args.end(), extra.begin(), extra.end());

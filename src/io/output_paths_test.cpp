@@ -43,10 +43,12 @@ TEST(OutputPaths, UsableLocationsPassAndNothingIsCreated) {
 TEST(OutputPaths, FileWhereAFolderIsWantedAndTheOtherWayRound) {
   const fs::path dir = fresh_dir("output_paths_kinds");
   const fs::path file = test::write_text(dir / "a_file", "x");
-  EXPECT_EQ(refusal([&] { check_output_directory(file, "--out"); }), "--out " + file.string() + ": exists and is not a folder");
+  EXPECT_EQ(refusal([&] { check_output_directory(file, "--out"); }),
+            "--out " + file.string() + ": exists and is not a folder");
   EXPECT_EQ(refusal([&] { check_output_directory(file / "sub", "--out"); }),
             "--out " + (file / "sub").string() + ": " + file.string() + " is not a folder");
-  EXPECT_EQ(refusal([&] { check_output_file(dir, "--save-map"); }), "--save-map " + dir.string() + ": is a folder, not a file");
+  EXPECT_EQ(refusal([&] { check_output_file(dir, "--save-map"); }),
+            "--save-map " + dir.string() + ": is a folder, not a file");
   EXPECT_EQ(refusal([&] { check_output_file(file / "x.png", "--plot"); }),
             "--plot " + (file / "x.png").string() + ": " + file.string() + " is not a folder");
   EXPECT_NE(refusal([&] { check_output_file("/dev/null", "--decisions"); }).find("not a regular file"), std::string::npos);
@@ -58,6 +60,9 @@ TEST(OutputPaths, PlacesWhereNothingCanBeCreatedAreRefused) {
   const std::string proc_file = refusal([] { check_output_file("/proc/x/map.dsmap", "--save-map"); });
   EXPECT_NE(proc_file.find("--save-map /proc/x/map.dsmap: cannot create a folder in /proc"), std::string::npos)
       << proc_file;
+}
+
+TEST(OutputPaths, FolderWithoutWritePermissionIsRefused) {
   if (::geteuid() == 0) GTEST_SKIP() << "root writes into read-only folders: the permission case needs a user";
   const fs::path locked = fresh_dir("output_paths_locked");
   fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);

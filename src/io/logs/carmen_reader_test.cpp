@@ -145,7 +145,8 @@ TEST(CarmenReader, BadParamThatIsNotNeededIsAWarning) {
   EXPECT_TRUE(has_warning(own, file + ":3: # PARAM laser_offset_x:")) << all_warnings(own);
 
   // FLASER records use the PARAM geometry, unless an option overrides it.
-  write_plain(dir / "flaser.log", "# PARAM laser_angle_increment x\n# PARAM laser_offset_y ?\n" + flaser(beams(5), 1.0));
+  write_plain(dir / "flaser.log",
+              "# PARAM laser_angle_increment x\n# PARAM laser_offset_y ?\n" + flaser(beams(5), 1.0));
   EXPECT_NE(error_of(dir / "flaser.log").find(":1: # PARAM laser_angle_increment"), std::string::npos);
   CarmenOptions classic;
   classic.beams = CarmenOptions::BeamConvention::Classic;

@@ -66,7 +66,9 @@ int text_width(std::string_view text, int scale) {
 }
 
 void draw_text(Image& image, int x, int y, std::string_view text, Rgb colour, int scale) {
-  for_each_ink(text, scale, [&](int col, int row) { fill_rect(image, x + col * scale, y + row * scale, scale, scale, colour); });
+  for_each_ink(text, scale, [&](int col, int row) {
+    fill_rect(image, x + col * scale, y + row * scale, scale, scale, colour);
+  });
 }
 
 void draw_text_up(Image& image, int x, int y, std::string_view text, Rgb colour, int scale) {

@@ -13,7 +13,9 @@ namespace {
 constexpr Rgb kWhite{255, 255, 255};
 constexpr Rgb kBlack{0, 0, 0};
 
-Image blank(int width, int height) { return {width, height, std::vector<Rgb>(static_cast<std::size_t>(width) * height, kWhite)}; }
+Image blank(int width, int height) {
+  return {width, height, std::vector<Rgb>(static_cast<std::size_t>(width) * height, kWhite)};
+}
 
 std::size_t count(const Image& image, Rgb colour) {
   return static_cast<std::size_t>(std::count(image.pixels.begin(), image.pixels.end(), colour));
