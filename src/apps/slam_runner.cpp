@@ -77,9 +77,12 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   return j;
 }
 
+bool has_returns(const std::vector<LaserScan>& scans) {
+  return std::any_of(scans.begin(), scans.end(), [](const LaserScan& s) { return s.valid_count() > 0; });
+}
+
 void require_returns(const SensorLog& log) {
-  const auto has_return = [](const LaserScan& s) { return s.valid_count() > 0; };
-  if (!log.scans.empty() && std::none_of(log.scans.begin(), log.scans.end(), has_return))
+  if (!log.scans.empty() && !has_returns(log.scans))
     throw InputError(fmt::format("{}: no scan has a valid return: every reading of the {} scans is NaN, inf, at or "
                                  "below the minimum range or at or beyond the maximum range ({} m): nothing to map",
                                  log.source, log.scans.size(), log.scans.front().range_max));

@@ -28,6 +28,9 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label = 
 // stats.json contents: the keys promised in the README.
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds);
 
+// Whether any of `scans` has a valid return (a reading the map can use).
+bool has_returns(const std::vector<LaserScan>& scans);
+
 // InputError naming the log unless some scan has a valid return: a log of
 // nothing but max-range readings would give an empty map.
 void require_returns(const SensorLog& log);

@@ -3,12 +3,12 @@
 #include <fmt/core.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <memory>
 
 #include "apps/slam_options.hpp"
+#include "apps/slam_runner.hpp"
 #include "apps/swarm_report.hpp"
 #include "apps/swarm_runner.hpp"
 #include "apps/swarm_scenario.hpp"
@@ -133,7 +133,7 @@ void run_scenario(SwarmArgs a) {
   std::size_t scans = 0;
   for (const AgentStream& s : scenario.streams) {
     scans += s.scans.size();
-    if (std::none_of(s.scans.begin(), s.scans.end(), [](const LaserScan& l) { return l.valid_count() > 0; }))
+    if (!has_returns(s.scans))
       spdlog::warn("agent {}: none of its {} scans has a valid return: its map stays empty", s.name, s.scans.size());
   }
   fmt::print("scenario {}: {} agents, {} scans, {} scripted encounters\n", scenario.name, scenario.streams.size(),

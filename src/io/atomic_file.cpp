@@ -73,34 +73,33 @@ void OutputFiles::add(fs::path path, std::string contents) {
 }
 
 void OutputFiles::write_all() const {
-  std::size_t written = 0;
-  try {
-    for (const File& f : files_) {
-      if (f.path.has_parent_path()) {
-        std::error_code ec;
-        fs::create_directories(f.path.parent_path(), ec);
-        if (ec) throw InputError("cannot create folder " + f.path.parent_path().string() + ": " + ec.message());
-      }
-      write_temporary(f.path, [&](std::ostream& out) {
-        out.write(f.contents.data(), static_cast<std::streamsize>(f.contents.size()));
-      });
-      ++written;
-    }
-  } catch (...) {
-    for (std::size_t i = 0; i < written; ++i) {
+  // Every temporary first, then the renames: a write that fails replaces nothing.
+  const auto discard = [&](std::size_t from, std::size_t to) {
+    for (std::size_t i = from; i < to; ++i) {
       std::error_code ignored;
       fs::remove(temporary_for(files_[i].path), ignored);
     }
+  };
+  std::size_t written = 0;
+  try {
+    for (; written < files_.size(); ++written) {
+      const File& f = files_[written];
+      std::error_code ec;
+      if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
+      if (ec) throw InputError("cannot create folder " + f.path.parent_path().string() + ": " + ec.message());
+      write_temporary(f.path, [&](std::ostream& out) {
+        out.write(f.contents.data(), static_cast<std::streamsize>(f.contents.size()));
+      });
+    }
+  } catch (...) {
+    discard(0, written);
     throw;
   }
   for (std::size_t i = 0; i < files_.size(); ++i) {
     try {
       rename_into_place(files_[i].path);
     } catch (...) {
-      for (std::size_t j = i + 1; j < files_.size(); ++j) {
-        std::error_code ignored;
-        fs::remove(temporary_for(files_[j].path), ignored);
-      }
+      discard(i + 1, files_.size());
       throw;
     }
   }
