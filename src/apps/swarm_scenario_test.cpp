@@ -229,7 +229,8 @@ TEST(SwarmScenario, MissingScenarioFileIsAnInputError) {
 // each encounter both robots have just played the scans its log_times name
 // (the picking script aligned the start times to make that exact).
 TEST(SwarmScenarioRealData, ShippedScenariosLoadWithEncountersWhereTheySay) {
-  const fs::path scenarios = fs::path(__FILE__).parent_path() / ".." / ".." / "scenarios";
+  // Not from __FILE__: ccache's base_dir makes it relative to the build folder.
+  const fs::path scenarios = fs::path(DSSWARM_SCENARIOS_DIR);
   const fs::path data(DSSWARM_SHARED_DATA);
   if (!fs::exists(data / "carmen" / "intel.log.gz")) GTEST_SKIP() << "real data not found at " << data;
   std::vector<fs::path> files;
