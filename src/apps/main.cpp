@@ -1,6 +1,8 @@
 // dsswarm: decentralized multi-robot 2D laser SLAM with Dempster–Shafer grids.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 
 #include <exception>
 
@@ -12,6 +14,9 @@
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
+  // Warnings go to stderr as "warning: ...", like errors; stdout carries results.
+  spdlog::set_default_logger(spdlog::stderr_color_st("dsswarm"));
+  spdlog::set_pattern("%^%l%$: %v");
   CLI::App app{"dsswarm: decentralized multi-robot 2D laser SLAM on small computers"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "dsswarm 0.1.0");
@@ -25,7 +30,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version arrive as "errors" that exit 0; the rest are
+    // command-line mistakes: exit 2 like any other configuration error.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    fmt::print(stderr, "error: {}\nRun with --help for more information.\n", e.what());
+    return 2;
   } catch (const dsswarm::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

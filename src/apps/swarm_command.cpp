@@ -4,14 +4,18 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include "apps/slam_options.hpp"
+#include "apps/slam_runner.hpp"
+#include "apps/swarm_report.hpp"
 #include "apps/swarm_runner.hpp"
 #include "apps/swarm_scenario.hpp"
 #include "eval/relations.hpp"
 #include "eval/swarm_eval.hpp"
 #include "io/atomic_file.hpp"
+#include "io/output_paths.hpp"
 #include "sim/proximity.hpp"
 #include "sim/swarm_sim.hpp"
 
@@ -19,7 +23,7 @@ namespace dsswarm {
 namespace {
 
 struct DemoArgs {
-  std::string out = "demo_out";
+  std::string out = "out/demo";  // as README and scripts/demo.sh
   int robots = 3;
   std::uint64_t seed = 1;
   std::uint64_t world_seed = 1;
@@ -36,6 +40,7 @@ void print_encounter_summary(const nlohmann::json& stats) {
 }
 
 void run_demo(const DemoArgs& a) {
+  check_output_directory(a.out, "--out");
   SwarmConfig config = a.slam.resolve_swarm();
   config.encounter.locate.search_radius = a.range;  // the proximity range bounds where the other robot is
   config.merge = !a.no_merge;
@@ -67,16 +72,23 @@ void run_demo(const DemoArgs& a) {
   for (const ProximityEvent& e : near)
     events.push_back({e.time, static_cast<std::size_t>(e.a), static_cast<std::size_t>(e.b)});
 
+  const std::size_t planned = events.size();
   SwarmSession session(std::move(streams), std::move(events), config);
   const double seconds = run_swarm_session(session, "demo");
   const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds, &truth);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
+  fmt::print("{}\n",
+             describe_encounter_events("proximity events", planned, session.encounters().size(), session.skipped()));
   for (const auto& agent : stats["agents"])
     fmt::print("  {}: ATE RMSE {:.3f} m, map covers {:.0f}% of what the swarm explored, knows {} other robot(s)\n",
                agent["name"].get<std::string>(), agent["ate_rmse"].get<double>(),
                100.0 * agent["coverage"].get<double>(), agent["knows"].size());
+  if (stats["encounters_accepted"].get<std::size_t>() == 0) {
+    fmt::print("nothing was merged: no encounter was accepted\n");
+    return;
+  }
   fmt::print("worst accepted transform error {:.3f} m / {:.2f}° against the map frames as they stood (causal), "
              "{:.3f} m / {:.2f}° against the robots' true relative pose; {} wrong merges (> 0.3 m or 3° against both "
              "the robots' true relative pose and the aligned frames)\n",
@@ -93,26 +105,37 @@ struct SwarmArgs {
 };
 
 void run_scenario(SwarmArgs a) {
+  check_output_directory(a.out, "--out");
   SwarmScenario scenario = load_swarm_scenario(a.scenario);
   for (const std::string& w : scenario.warnings) spdlog::warn("{}", w);
   if (a.slam.config_file.empty() && scenario.config) a.slam.config_file = *scenario.config;
   SwarmConfig config = a.slam.resolve_swarm();
   config.merge = !a.no_merge;
+  // Read before the run, so that a bad file cannot cost the outputs a complete set.
+  const std::vector<Relation> relations =
+      scenario.relations.empty() ? std::vector<Relation>{} : read_relations(scenario.relations);
   std::size_t scans = 0;
-  for (const AgentStream& s : scenario.streams) scans += s.scans.size();
+  for (const AgentStream& s : scenario.streams) {
+    scans += s.scans.size();
+    if (!has_returns(s.scans))
+      spdlog::warn("agent {}: none of its {} scans has a valid return: its map stays empty", s.name, s.scans.size());
+  }
   fmt::print("scenario {}: {} agents, {} scans, {} scripted encounters\n", scenario.name, scenario.streams.size(),
              scans, scenario.events.size());
+  const std::size_t planned = scenario.events.size();
   SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config);
   const double seconds = run_swarm_session(session, scenario.name);
   const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
+  fmt::print("{}\n",
+             describe_encounter_events("scripted encounters", planned, session.encounters().size(), session.skipped()));
   for (const EncounterRecord& r : session.encounters())
     fmt::print("  t={:.1f} s {}–{}: {}\n", r.time, r.a, r.b, r.accepted ? "accepted" : "rejected: " + r.reason);
   if (!scenario.relations.empty()) {
     // The scenario names its relations: score the run right away.
-    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), read_relations(scenario.relations));
+    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), relations);
     const std::filesystem::path out(a.out);
     write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
     fmt::print("{}", format_swarm_evaluation(ev));
@@ -126,9 +149,7 @@ void add_swarm_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "swarm", "Several robots from recorded logs (scenario file: agents, log segments, encounters), each mapping in "
                "its own frame and merging maps when they meet");
-  cmd->add_option("scenario", args->scenario, "Scenario YAML (see scenarios/README.md)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scenario", args->scenario, "Scenario YAML (see scenarios/README.md)")->required();
   cmd->add_option("--out", args->out, "Output directory (created if needed)")->required();
   cmd->add_flag("--no-merge", args->no_merge, "Ignore encounters: every robot maps alone (the baseline)");
   add_slam_options(*cmd, args->slam);
@@ -142,8 +163,12 @@ void add_swarm_demo_command(CLI::App& app) {
               "another is near, then they merge maps; scored against ground truth");
   cmd->add_option("--out", args->out, "Output directory")->capture_default_str();
   cmd->add_option("--robots", args->robots, "Number of robots")->check(CLI::Range(1, 64))->capture_default_str();
-  cmd->add_option("--run-seed", args->seed, "Seed of the robots' starts, routes and sensor noise")->capture_default_str();
-  cmd->add_option("--world-seed", args->world_seed, "Seed of the generated building")->capture_default_str();
+  cmd->add_option("--run-seed", args->seed, "Seed of the robots' starts, routes and sensor noise")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  cmd->add_option("--world-seed", args->world_seed, "Seed of the generated building")
+      ->check(non_negative_integer())
+      ->capture_default_str();
   cmd->add_option("--range", args->range, "Proximity sensor range (m)")->check(CLI::Range(0.5, 20.0))->capture_default_str();
   cmd->add_flag("--no-merge", args->no_merge, "Ignore encounters: every robot maps alone (the baseline)");
   add_slam_options(*cmd, args->slam);

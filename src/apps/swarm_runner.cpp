@@ -8,10 +8,13 @@
 #include <unordered_set>
 
 #include "apps/slam_runner.hpp"
+#include "apps/stale_outputs.hpp"
+#include "apps/swarm_picture.hpp"
 #include "common/errors.hpp"
 #include "config/config_json.hpp"
 #include "eval/ate.hpp"
 #include "io/atomic_file.hpp"
+#include "io/maps/annotate.hpp"
 #include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"
 #include "io/maps/render.hpp"
@@ -78,40 +81,12 @@ std::unordered_set<std::int64_t> known_world_cells(const DsGrid& grid, const Pos
   return out;
 }
 
-// Writes STEM.{yaml,pgm} (nothing for an empty map) and returns the raster.
-GridRaster write_map_files(const std::filesystem::path& dir, const std::string& stem, const MultiResMap& map) {
+// Adds STEM.{yaml,pgm} (nothing for an empty map) and returns the raster.
+GridRaster add_map_files(OutputFiles& files, const std::filesystem::path& dir, const std::string& stem,
+                         const MultiResMap& map) {
   GridRaster raster = map.finest().to_raster();
-  if (raster.width > 0) write_map_server(dir / (stem + ".yaml"), raster);
+  if (raster.width > 0) add_map_server(files, dir / (stem + ".yaml"), raster);
   return raster;
-}
-
-// `raster`: the first agent's merged map.
-void draw_swarm_picture(const std::filesystem::path& path, const SwarmSession& s, const GridRaster& raster,
-                        const std::vector<std::optional<Pose2>>& frames) {
-  if (raster.width == 0) return;
-  Image picture = render_map(raster, fitting_scale(raster));
-  for (std::size_t i = 0; i < s.agents(); ++i) {
-    if (!frames[i]) continue;
-    std::vector<Eigen::Vector2d> pts;
-    for (const SlamStep& step : s.track(i).steps) pts.push_back(*frames[i] * step.pose.translation());
-    draw_polyline(picture, raster, pts, agent_colour(static_cast<int>(i)), 1);
-    if (!pts.empty()) draw_marker(picture, raster, pts.front(), agent_colour(static_cast<int>(i)), 3);
-  }
-  // Encounters where agent 0's frame can place robot a: filled black when
-  // accepted, red ring when rejected.
-  for (const EncounterRecord& r : s.encounters()) {
-    for (std::size_t i = 0; i < s.agents(); ++i) {
-      if (s.agent(i).name() != r.a || !frames[i]) continue;
-      const Eigen::Vector2d at = *frames[i] * r.a_pose_in_a.translation();
-      if (r.accepted) {
-        draw_marker(picture, raster, at, Rgb{0, 0, 0}, 5);
-      } else {
-        draw_marker(picture, raster, at, Rgb{220, 30, 30}, 5);
-        draw_marker(picture, raster, at, Rgb{255, 255, 255}, 3);
-      }
-    }
-  }
-  write_png(path, picture);
 }
 
 }  // namespace
@@ -136,7 +111,8 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   if (truth && truth->world_poses.size() != s.agents())
     throw ConfigError("swarm outputs: ground truth for " + std::to_string(truth->world_poses.size()) +
                       " agents, but the session has " + std::to_string(s.agents()));
-  std::filesystem::create_directories(dir);
+  const std::vector<std::filesystem::path> previous = previous_swarm_outputs(dir);
+  OutputFiles files;
   std::vector<std::optional<Pose2>> frames;
   for (std::size_t i = 0; i < s.agents(); ++i) frames.push_back(frame_in_reference(s, i));
 
@@ -149,24 +125,25 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   for (std::size_t i = 0; i < s.agents(); ++i) {
     const SwarmAgent& a = s.agent(i);
     const std::filesystem::path adir = dir / "agents" / a.name();
-    std::filesystem::create_directories(adir);
     const Trajectory own = own_trajectory(s.track(i));
-    write_tum(adir / "trajectory.tum", own);
-    write_map_files(adir, "map", a.slam().own_map());
-    GridRaster merged = write_map_files(adir, "merged_map", a.slam().map());
+    files.add(adir / "trajectory.tum", format_tum(adir / "trajectory.tum", own));
+    add_map_files(files, adir, "map", a.slam().own_map());
+    GridRaster merged = add_map_files(files, adir, "merged_map", a.slam().map());
     if (merged.width > 0) {
       Image picture = render_map(merged, fitting_scale(merged));
       std::vector<Eigen::Vector2d> pts;
       for (const auto& p : own) pts.push_back(p.pose.translation());
-      draw_polyline(picture, merged, pts, agent_colour(static_cast<int>(i)), 1);
-      write_png(adir / "merged_map.png", picture);
+      draw_path(picture, merged, pts, agent_colour(static_cast<int>(i)));
+      picture = with_legend(picture, merged.resolution * merged.width / picture.width,
+                            {{a.name(), agent_colour(static_cast<int>(i)), LegendEntry::Mark::Line}});
+      files.add(adir / "merged_map.png", encode_png(adir / "merged_map.png", picture));
     }
     if (i == 0) first_merged = std::move(merged);
     if (frames[i]) {
       Trajectory joint = own;
       for (auto& p : joint) p.pose = *frames[i] * p.pose;
-      std::filesystem::create_directories(dir / "joint");
-      write_tum(dir / "joint" / (a.name() + ".tum"), joint);
+      const std::filesystem::path path = dir / "joint" / (a.name() + ".tum");
+      files.add(path, format_tum(path, joint));
     }
     nlohmann::json j;
     j["name"] = a.name();
@@ -183,7 +160,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     j["in_joint_frame"] = frames[i].has_value();
     if (truth && !own.empty() && !truth->world_poses[i].empty()) {
       const Trajectory& t = truth->world_poses[i];
-      write_tum(adir / "ground_truth.tum", t);
+      files.add(adir / "ground_truth.tum", format_tum(adir / "ground_truth.tum", t));
       j["ate_rmse"] = evaluate_ate(own, t).rmse;
       const Pose2 frame_in_world = truth_at(t, own.front().timestamp) * own.front().pose.inverse();
       auto own_cells = known_world_cells(a.slam().own_map().finest(), frame_in_world);
@@ -305,8 +282,9 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     bytes += static_cast<double>(r.bytes);
     list.push_back(std::move(e));
   }
-  write_file_atomically(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
-  draw_swarm_picture(dir / "swarm.png", s, first_merged, frames);
+  files.add(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
+  if (first_merged.width > 0)
+    files.add(dir / "swarm.png", encode_png(dir / "swarm.png", swarm_picture(s, first_merged, frames)));
 
   nlohmann::json stats;
   stats["agents"] = agents;
@@ -327,7 +305,9 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     stats["worst_accepted_causal_error"] = {worst_causal_xy, worst_causal_theta};
     stats["wrong_merges"] = wrong;
   }
-  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+  files.add(dir / "stats.json", stats.dump(2) + "\n");
+  files.write_all();
+  remove_stale_outputs(dir, previous, files);
   return stats;
 }
 

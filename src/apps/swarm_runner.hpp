@@ -8,6 +8,8 @@
 //   encounters.json                    one entry per encounter (and, simulated, its true error)
 //   swarm.png                          first agent's merged map, all trajectories, encounters
 //   stats.json                         per-agent and per-encounter figures
+// A reused folder keeps no files of agents the earlier run had and this one
+// has not (stale_outputs.hpp); files dsswarm did not write stay.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -29,7 +31,7 @@ struct SwarmTruth {
 // Plays the session; returns the wall-clock seconds it took.
 double run_swarm_session(SwarmSession& session, const std::string& label);
 
-// Writes every output into `dir` (atomically, file by file) and returns stats.json's content.
+// Writes every output into `dir` (all of them or, on an error, none) and returns stats.json's content.
 nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const SwarmSession& session,
                                    double wall_seconds, const SwarmTruth* truth = nullptr);
 

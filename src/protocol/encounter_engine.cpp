@@ -79,8 +79,8 @@ void EncounterEngine::send(Exchange* x, const std::string& recipient, Body body)
   outbox_.push_back(std::move(out));
 }
 
-void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, const std::string& reason,
-                              double now) {
+void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, EncounterOutcome::Decline why,
+                              const std::string& reason, double now) {
   send(nullptr, peer, Decline{encounter, reason});
   EncounterOutcome o;
   o.encounter = encounter;
@@ -88,6 +88,7 @@ void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, 
   o.peer = peer;
   o.self_is_a = self_ < peer;
   o.end = EncounterOutcome::End::declined;
+  o.decline = why;
   o.reason = reason;
   o.started = o.ended = now;
   outcomes_.push_back(std::move(o));
@@ -102,22 +103,23 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
   const Key key{peer, encounter};
   if (auto it = open_.find(key); it != open_.end()) return it->second.get();
   if (!config_.merge) {
-    decline(peer, encounter, "merging is off", now);
+    decline(peer, encounter, EncounterOutcome::Decline::merging_off, "merging is off", now);
     return nullptr;
   }
   const double since = now - peers_[peer].last_merge;
   if (since < config_.remerge_interval) {
-    decline(peer, encounter, fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, since,
-                                         config_.remerge_interval), now);
+    decline(peer, encounter, EncounterOutcome::Decline::merged_recently,
+            fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, since, config_.remerge_interval),
+            now);
     return nullptr;
   }
   if (open_.size() >= config_.max_open_encounters) {
-    decline(peer, encounter, fmt::format("busy: {} encounters open", open_.size()), now);
+    decline(peer, encounter, EncounterOutcome::Decline::busy, fmt::format("busy: {} encounters open", open_.size()), now);
     return nullptr;
   }
   std::optional<CapturedView> view = port_.capture_view(peer, encounter);
   if (!view) {
-    decline(peer, encounter, "no scan yet", now);
+    decline(peer, encounter, EncounterOutcome::Decline::no_scan, "no scan yet", now);
     return nullptr;
   }
   auto x = std::make_unique<Exchange>();
@@ -235,7 +237,7 @@ void EncounterEngine::confirm(Exchange& x) {
   pending.push_back(t);
   if (pending.size() > config_.max_pending_confirmations) pending.erase(pending.begin());
   x.accepted = false;
-  o.reason = "awaiting confirmation: the placements verify, but the maps merge only once a second encounter agrees";
+  o.reason = "unconfirmed: the placements verify; the maps merge once a second encounter agrees";
 }
 
 void EncounterEngine::send_transfer(Exchange& x) {
@@ -293,6 +295,7 @@ void EncounterEngine::on_decline(const std::string& peer, const Decline& decline
   auto it = open_.find({peer, decline.encounter});
   if (it == open_.end()) return;
   it->second->outcome.bytes_received += bytes;
+  it->second->outcome.decline = EncounterOutcome::Decline::by_peer;
   finish(it->first, EncounterOutcome::End::declined, peer + " declined: " + decline.reason, now);
 }
 

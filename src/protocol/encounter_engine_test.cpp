@@ -152,7 +152,7 @@ TEST(EncounterEngine, AFirstVerifiedEstimateWaitsForASecondThatAgrees) {
   ASSERT_EQ(first_a.size(), 1u);
   EXPECT_EQ(first_a[0].end, End::rejected);
   EXPECT_EQ(first_b[0].end, End::rejected);
-  EXPECT_NE(first_a[0].reason.find("awaiting confirmation"), std::string::npos);
+  EXPECT_NE(first_a[0].reason.find("unconfirmed: "), std::string::npos);
   EXPECT_EQ(p.a.merges, 0);
   p.ea.start("b", 2, 1.0);
   p.eb.start("a", 2, 1.0);

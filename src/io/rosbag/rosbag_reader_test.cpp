@@ -197,6 +197,35 @@ TEST(RosbagReader, OdometryFromTfWhenAsked) {
       << joined(with.warnings);
 }
 
+TEST(RosbagReader, AbsentOdometryTopicListsTheTopicsAndNamesTheOptions) {
+  TestBagSpec spec = small_spec();
+  spec.odom_topic.clear();  // odometry only on /tf
+  const fs::path path = write_bag("no_odom_topic", spec);
+  // The default topic: a warning, and the run goes on without odometry.
+  const SensorLog log = read_rosbag(path);
+  EXPECT_TRUE(has_warning(log, "/scan (sensor_msgs/LaserScan, 5 messages)")) << joined(log.warnings);
+  EXPECT_TRUE(has_warning(log, "--tf-odometry")) << joined(log.warnings);
+  // A topic the user named and mistyped: an error saying what there is.
+  RosbagOptions options;
+  options.odom_topic = "/odm";
+  options.odom_topic_named = true;
+  const std::string error = input_error_of(path, options);
+  EXPECT_NE(error.find("no odometry topic /odm"), std::string::npos) << error;
+  EXPECT_NE(error.find("/tf (tf2_msgs/TFMessage"), std::string::npos) << error;
+  EXPECT_NE(error.find("--tf-odometry"), std::string::npos) << error;
+  options.use_tf_odometry = true;  // /tf it is: the topic does not matter then
+  EXPECT_TRUE(read_rosbag(path, options).scans.front().odometry.has_value());
+}
+
+TEST(RosbagReader, NegativeRangesStayAndWarn) {
+  TestBagSpec spec = small_spec();
+  spec.messages[2] = scan_at(10.2, {1.0F, -2.0F, -std::numeric_limits<float>::infinity()});
+  const SensorLog log = read_rosbag(write_bag("negative", spec));
+  EXPECT_FLOAT_EQ(log.scans.front().ranges[1], -2.0F);
+  EXPECT_TRUE(has_warning(log, ": 1 range readings are negative (kept; they count as invalid beams)"))
+      << joined(log.warnings);
+}
+
 TEST(RosbagReader, ScansFarOutsideTheOdometrySpanGetNoOdometry) {
   TestBagSpec spec;
   spec.messages = {scan_at(9.0, {1.0F}),         scan_at(9.6, {1.0F}),

@@ -1,0 +1,18 @@
+#pragma once
+// Console lines of `dsswarm swarm` and `dsswarm demo` that need more than one
+// format call.
+#include <string>
+#include <vector>
+
+#include "protocol/swarm_session.hpp"
+
+namespace dsswarm {
+
+// What became of the encounter events a session was given, e.g.
+// "3 scripted encounters: 2 run, 1 skipped (robot2 had not started)".
+// `what` names the events ("scripted encounters", "proximity events");
+// `skipped` holds why each event that did not run was skipped (SwarmSession::skipped).
+std::string describe_encounter_events(const std::string& what, std::size_t events, std::size_t run,
+                                      const std::vector<std::string>& skipped);
+
+}  // namespace dsswarm
