@@ -1,0 +1,53 @@
+#pragma once
+// The test peer's DDS entities (Cyclone C API): a domain configured for
+// loopback with an optional <Security> fragment, one participant, and a
+// reliable reader and writer of Blob on one topic. Test code only; the
+// swarm's own DDS wrapper lives in src/net.
+#include <dds/dds.h>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "security_test_types.h"
+
+namespace dsswarm::sectest {
+
+// Milliseconds since the first call (the peer calls it at start-up).
+double ms_since_start();
+
+// A Cyclone configuration for domain `domain` on the loopback interface,
+// unicast discovery, with `security` (a <Security> element, or "") spliced in.
+std::string loopback_config(int domain, const std::string& security);
+
+class PeerParticipant {
+ public:
+  // recover_s > 0 enables the handshake watchdog with that stuck time.
+  PeerParticipant(int domain, const std::string& security, std::string topic, double recover_s);
+  ~PeerParticipant();
+  PeerParticipant(const PeerParticipant&) = delete;
+  PeerParticipant& operator=(const PeerParticipant&) = delete;
+
+  bool ok() const { return writer_ > 0; }
+  dds_return_t create_result() const { return create_result_; }
+
+  void write(const std::string& origin, unsigned long long incarnation, uint32_t seq,
+             std::vector<unsigned char>& payload);
+  void take(const std::function<void(const dsswarm_sectest_Blob&)>& on_sample);
+  // Prints "matched <n> <ms>" when the writer's matched count changed, and
+  // lets the watchdog recreate the participant ("recreated <ms>").
+  void report_matches();
+
+ private:
+  bool create();
+  void destroy();
+
+  std::string topic_name_;
+  dds_domainid_t domain_id_ = 0;
+  dds_entity_t domain_ = 0, participant_ = 0, topic_ = 0, reader_ = 0, writer_ = 0;
+  dds_return_t create_result_ = 0;
+  int32_t last_matched_ = -1;
+};
+
+}  // namespace dsswarm::sectest
