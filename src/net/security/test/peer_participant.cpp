@@ -20,8 +20,9 @@ std::string loopback_config(int domain, const std::string& security) {
          security + "</Domain></CycloneDDS>";
 }
 
-PeerParticipant::PeerParticipant(int domain, const std::string& security, std::string topic, double /*recover_s*/)
-    : topic_name_(std::move(topic)) {
+PeerParticipant::PeerParticipant(int domain, const std::string& security, std::string topic, bool keep_all,
+                                 double /*recover_s*/)
+    : topic_name_(std::move(topic)), keep_all_(keep_all) {
   domain_id_ = static_cast<dds_domainid_t>(domain);
   domain_ = dds_create_domain(domain_id_, loopback_config(domain, security).c_str());
   if (domain_ < 0) {
@@ -46,7 +47,13 @@ bool PeerParticipant::create() {
   topic_ = dds_create_topic(participant_, &dsswarm_sectest_Blob_desc, topic_name_.c_str(), nullptr, nullptr);
   dds_qos_t* qos = dds_create_qos();
   dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(10));
-  dds_qset_history(qos, DDS_HISTORY_KEEP_ALL, 0);
+  // KEEP_LAST by default: a reliable KEEP_ALL writer blocks in dds_write
+  // while a dead peer's reader stays matched (until its lease expires).
+  if (keep_all_) {
+    dds_qset_history(qos, DDS_HISTORY_KEEP_ALL, 0);
+  } else {
+    dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, 8);
+  }
   reader_ = dds_create_reader(participant_, topic_, qos, nullptr);
   writer_ = dds_create_writer(participant_, topic_, qos, nullptr);
   dds_delete_qos(qos);

@@ -23,8 +23,9 @@ std::string loopback_config(int domain, const std::string& security);
 
 class PeerParticipant {
  public:
+  // keep_all: KEEP_ALL history (throughput runs), else KEEP_LAST 8.
   // recover_s > 0 enables the handshake watchdog with that stuck time.
-  PeerParticipant(int domain, const std::string& security, std::string topic, double recover_s);
+  PeerParticipant(int domain, const std::string& security, std::string topic, bool keep_all, double recover_s);
   ~PeerParticipant();
   PeerParticipant(const PeerParticipant&) = delete;
   PeerParticipant& operator=(const PeerParticipant&) = delete;
@@ -45,6 +46,7 @@ class PeerParticipant {
 
   std::string topic_name_;
   dds_domainid_t domain_id_ = 0;
+  bool keep_all_ = false;
   dds_entity_t domain_ = 0, participant_ = 0, topic_ = 0, reader_ = 0, writer_ = 0;
   dds_return_t create_result_ = 0;
   int32_t last_matched_ = -1;

@@ -36,6 +36,7 @@ struct Args {
   long count = 0;   // samples to write, 0 = until stopped
   long expect = 0;  // exit after this many samples from others, 0 = never
   bool silent = false;
+  bool keep_all = false;
   double lifetime_s = 60;
   double recover_s = 0;  // >0: recreate the participant when a known peer stays unmatched this long
 };
@@ -64,7 +65,7 @@ int run(const Args& a) {
   const std::string security = a.keys.empty() ? "" : dsswarm::security::security_config_xml(a.keys, a.name);
   std::random_device rd;
   const unsigned long long incarnation = (static_cast<unsigned long long>(rd()) << 32) | rd();
-  dsswarm::sectest::PeerParticipant peer(a.domain, security, a.topic, a.recover_s);
+  dsswarm::sectest::PeerParticipant peer(a.domain, security, a.topic, a.keep_all, a.recover_s);
   if (!peer.ok()) {
     std::printf("create-failed %d\n", peer.create_result());
     return 3;
@@ -103,6 +104,7 @@ int main(int argc, char** argv) {
   app.add_option("--count", a.count);
   app.add_option("--expect", a.expect);
   app.add_flag("--silent", a.silent, "do not publish");
+  app.add_flag("--keep-all", a.keep_all, "KEEP_ALL history (throughput), else KEEP_LAST 8");
   app.add_option("--lifetime-s", a.lifetime_s);
   app.add_option("--recover-s", a.recover_s);
   CLI11_PARSE(app, argc, argv);
