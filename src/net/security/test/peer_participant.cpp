@@ -1,5 +1,6 @@
 #include "net/security/test/peer_participant.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -21,8 +22,15 @@ std::string loopback_config(int domain, const std::string& security) {
 }
 
 PeerParticipant::PeerParticipant(int domain, const std::string& security, std::string topic, bool keep_all,
-                                 double /*recover_s*/)
+                                 double recover_s)
     : topic_name_(std::move(topic)), keep_all_(keep_all) {
+  if (recover_s > 0) {
+    security::HandshakeWatchdogConfig c;
+    c.stuck_after_s = recover_s;
+    c.first_backoff_s = 2 * recover_s;
+    c.max_backoff_s = std::max(c.max_backoff_s, c.first_backoff_s);
+    watchdog_.emplace(c);
+  }
   domain_id_ = static_cast<dds_domainid_t>(domain);
   domain_ = dds_create_domain(domain_id_, loopback_config(domain, security).c_str());
   if (domain_ < 0) {
@@ -58,13 +66,25 @@ bool PeerParticipant::create() {
   writer_ = dds_create_writer(participant_, topic_, qos, nullptr);
   dds_delete_qos(qos);
   create_result_ = topic_ < 0 ? topic_ : reader_ < 0 ? reader_ : writer_ < 0 ? writer_ : 0;
+  if (ok() && watchdog_) {
+    probe_ = std::make_unique<security::DiscoveryProbe>(participant_, std::vector<dds_entity_t>{writer_},
+                                                        std::vector<dds_entity_t>{reader_});
+  }
   return ok();
 }
 
 void PeerParticipant::destroy() {
+  probe_.reset();
   if (participant_ > 0) dds_delete(participant_);
   participant_ = topic_ = reader_ = writer_ = 0;
   last_matched_ = -1;
+}
+
+bool PeerParticipant::recreate() {
+  destroy();
+  const bool ok_now = create();
+  std::printf("recreated %.1f\n", ms_since_start());
+  return ok_now;
 }
 
 void PeerParticipant::write(const std::string& origin, unsigned long long incarnation, uint32_t seq,
@@ -99,6 +119,11 @@ void PeerParticipant::report_matches() {
   if (static_cast<int32_t>(st.current_count) != last_matched_) {
     last_matched_ = static_cast<int32_t>(st.current_count);
     std::printf("matched %d %.1f\n", st.current_count, ms_since_start());
+  }
+  if (watchdog_ && probe_ && security::handshake_stuck(*probe_, *watchdog_)) {
+    for (const auto& p : watchdog_->stuck(security::HandshakeWatchdog::Clock::now())) std::printf("stuck %s\n", p.c_str());
+    recreate();
+    watchdog_->recreated(security::HandshakeWatchdog::Clock::now());
   }
 }
 

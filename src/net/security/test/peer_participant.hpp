@@ -6,10 +6,13 @@
 #include <dds/dds.h>
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "net/security/discovery_probe.hpp"
+#include "net/security/handshake_watchdog.hpp"
 #include "security_test_types.h"
 
 namespace dsswarm::sectest {
@@ -39,6 +42,11 @@ class PeerParticipant {
   // Prints "matched <n> <ms>" when the writer's matched count changed, and
   // lets the watchdog recreate the participant ("recreated <ms>").
   void report_matches();
+  // Deletes the participant (and its endpoints) and creates it again: new
+  // GUID, fresh handshakes with every peer. Prints "recreated <ms>".
+  bool recreate();
+  // The writer's matched-reader count at the last report_matches().
+  int32_t matched() const { return last_matched_; }
 
  private:
   bool create();
@@ -50,6 +58,8 @@ class PeerParticipant {
   dds_entity_t domain_ = 0, participant_ = 0, topic_ = 0, reader_ = 0, writer_ = 0;
   dds_return_t create_result_ = 0;
   int32_t last_matched_ = -1;
+  std::optional<security::HandshakeWatchdog> watchdog_;
+  std::unique_ptr<security::DiscoveryProbe> probe_;
 };
 
 }  // namespace dsswarm::sectest

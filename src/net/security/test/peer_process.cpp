@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,6 +27,11 @@ Clock::time_point deadline_after(double seconds) {
 int ms_until(Clock::time_point deadline) {
   const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
   return left > 0 ? static_cast<int>(left) : 0;
+}
+
+double cpu_of(const rusage& ru) {
+  return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) * 1e-6;
 }
 
 }  // namespace
@@ -69,11 +75,11 @@ bool PeerProcess::read_some(double seconds) {
   return true;
 }
 
-std::optional<std::string> PeerProcess::wait_for(const std::string& prefix, double seconds) {
+std::optional<std::string> PeerProcess::wait_for(const std::string& prefix, double seconds, std::size_t occurrence) {
   const auto deadline = deadline_after(seconds);
-  for (std::size_t checked = 0;;) {
+  for (std::size_t checked = 0, found = 0;;) {
     for (; checked < lines_.size(); ++checked)
-      if (lines_[checked].rfind(prefix, 0) == 0) return lines_[checked];
+      if (lines_[checked].rfind(prefix, 0) == 0 && ++found == occurrence) return lines_[checked];
     if (Clock::now() >= deadline) return std::nullopt;
     if (!read_some(static_cast<double>(ms_until(deadline)) / 1000.0)) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));  // output closed: nothing more will come
@@ -99,8 +105,10 @@ std::optional<int> PeerProcess::exit_code(double seconds) {
   const auto deadline = deadline_after(seconds);
   while (!status_) {
     int st = 0;
-    if (::waitpid(pid_, &st, WNOHANG) == pid_) {
+    rusage ru{};
+    if (::wait4(pid_, &st, WNOHANG, &ru) == pid_) {
       status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+      cpu_seconds_ = cpu_of(ru);
       break;
     }
     if (Clock::now() >= deadline) return std::nullopt;
@@ -114,8 +122,10 @@ void PeerProcess::kill_now() {
   if (status_ || pid_ <= 0) return;
   ::kill(pid_, SIGKILL);
   int st = 0;
-  ::waitpid(pid_, &st, 0);
+  rusage ru{};
+  ::wait4(pid_, &st, 0, &ru);
   status_ = 128 + SIGKILL;
+  cpu_seconds_ = cpu_of(ru);
 }
 
 int PeerProcess::stop(double seconds) {

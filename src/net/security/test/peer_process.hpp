@@ -20,9 +20,9 @@ class PeerProcess {
   PeerProcess(const PeerProcess&) = delete;
   PeerProcess& operator=(const PeerProcess&) = delete;
 
-  // Reads output until a line starting with `prefix` arrives (returned) or
-  // `seconds` pass (nullopt). Lines already read count too.
-  std::optional<std::string> wait_for(const std::string& prefix, double seconds);
+  // Reads output until the `occurrence`-th line starting with `prefix` has
+  // arrived (returned) or `seconds` pass (nullopt). Lines already read count.
+  std::optional<std::string> wait_for(const std::string& prefix, double seconds, std::size_t occurrence = 1);
   // Reads output for `seconds`.
   void drain(double seconds);
   // Lines read so far that start with `prefix`.
@@ -32,6 +32,8 @@ class PeerProcess {
   int stop(double seconds);            // SIGTERM; SIGKILL after `seconds`; the exit status
   std::optional<int> exit_code(double seconds);  // waits for it to exit on its own
   const std::vector<std::string>& lines() const { return lines_; }
+  // User + system CPU seconds of the process, once it has been reaped.
+  double cpu_seconds() const { return cpu_seconds_; }
 
  private:
   bool read_some(double seconds);  // false at end of output
@@ -41,6 +43,7 @@ class PeerProcess {
   std::string partial_;
   std::vector<std::string> lines_;
   std::optional<int> status_;
+  double cpu_seconds_ = 0;
 };
 
 }  // namespace dsswarm::sectest

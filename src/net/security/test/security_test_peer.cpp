@@ -7,7 +7,8 @@
 //   matched <n> <ms>                    the writer's matched-reader count changed
 //   first <origin> <incarnation> <ms>   first sample from a sender's incarnation
 //   done <samples> <bytes> <first_ms> <last_ms>   --expect samples received
-//   recreated <ms>                      the stuck-peer watchdog rebuilt the participant
+//   recreated <ms>                      the participant was rebuilt (SIGUSR1, or the
+//                                       handshake watchdog with --recover-s)
 // It exits on SIGTERM/SIGINT, after --lifetime-s, or when --expect is met.
 #include <CLI/CLI.hpp>
 #include <dds/dds.h>
@@ -25,8 +26,9 @@
 
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;
+volatile std::sig_atomic_t g_stop = 0, g_recreate = 0;
 void on_signal(int) { g_stop = 1; }
+void on_recreate_signal(int) { g_recreate = 1; }
 
 struct Args {
   int domain = 0;
@@ -37,6 +39,7 @@ struct Args {
   long expect = 0;  // exit after this many samples from others, 0 = never
   bool silent = false;
   bool keep_all = false;
+  int wait_matched = 0;  // publish only once the writer has matched this many readers (ours included)
   double lifetime_s = 60;
   double recover_s = 0;  // >0: recreate the participant when a known peer stays unmatched this long
 };
@@ -75,7 +78,12 @@ int run(const Args& a) {
   Receipts receipts;
   uint32_t seq = 0;
   while (!g_stop && dsswarm::sectest::ms_since_start() < a.lifetime_s * 1000) {
-    if (!a.silent && (a.count == 0 || seq < a.count)) peer.write(a.name, incarnation, seq++, payload);
+    const bool may_write = !a.silent && (a.count == 0 || seq < a.count) && peer.matched() >= a.wait_matched;
+    if (may_write) peer.write(a.name, incarnation, seq++, payload);
+    if (g_recreate) {
+      g_recreate = 0;
+      if (!peer.recreate()) return 3;
+    }
     report_samples(peer, a, receipts);
     peer.report_matches();
     if (a.expect > 0 && receipts.samples >= a.expect) {
@@ -83,7 +91,7 @@ int run(const Args& a) {
       break;
     }
     std::fflush(stdout);
-    if (a.period_ms > 0 || a.silent) dds_sleepfor(DDS_MSECS(a.period_ms > 0 ? a.period_ms : 1));
+    if (a.period_ms > 0 || !may_write) dds_sleepfor(DDS_MSECS(a.period_ms > 0 ? a.period_ms : 1));
   }
   std::fflush(stdout);
   return 0;
@@ -105,11 +113,13 @@ int main(int argc, char** argv) {
   app.add_option("--expect", a.expect);
   app.add_flag("--silent", a.silent, "do not publish");
   app.add_flag("--keep-all", a.keep_all, "KEEP_ALL history (throughput), else KEEP_LAST 8");
+  app.add_option("--wait-matched", a.wait_matched, "publish once the writer matched this many readers (ours too)");
   app.add_option("--lifetime-s", a.lifetime_s);
   app.add_option("--recover-s", a.recover_s);
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
+  std::signal(SIGUSR1, on_recreate_signal);  // recreate the participant (recovery experiments)
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   try {
     return run(a);
