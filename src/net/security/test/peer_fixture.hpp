@@ -28,7 +28,16 @@ class PeerFixture : public ::testing::Test {
                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   void TearDown() override {
-    peers_.clear();  // kills what is still running
+    for (std::size_t i = 0; i < peers_.size(); ++i) {
+      peers_[i]->kill_now();
+      peers_[i]->drain(0.0);
+      if (HasFailure()) {  // keep what each peer printed next to its stderr
+        std::string text;
+        for (const auto& l : peers_[i]->lines()) text += l + "\n";
+        test::write_text(root_ / (names_[i] + "." + std::to_string(i) + ".stdout"), text);
+      }
+    }
+    peers_.clear();
     if (!HasFailure()) std::filesystem::remove_all(root_);
   }
 
@@ -50,11 +59,13 @@ class PeerFixture : public ::testing::Test {
     args.insert(args.end(), extra.begin(), extra.end());
     const auto log = root_ / (name + "." + std::to_string(peers_.size()) + ".stderr");
     peers_.push_back(std::make_unique<PeerProcess>(SECURITY_TEST_PEER, args, log));
+    names_.push_back(name);
     return *peers_.back();
   }
 
   std::filesystem::path root_;
   std::vector<std::unique_ptr<PeerProcess>> peers_;
+  std::vector<std::string> names_;
 };
 
 // The origin names of every "first <origin> <incarnation> <ms>" line.
