@@ -26,7 +26,7 @@ struct KeysArgs {
 GovernanceOptions governance_for(const std::string& protection) {
   GovernanceOptions g;
   if (protection == "sign") {
-    g.discovery = g.liveliness = g.rtps = ProtectionKind::kSign;
+    g.discovery = g.liveliness = g.rtps = g.swarm_metadata = ProtectionKind::kSign;
   } else if (protection != "encrypt") {
     throw ConfigError("--protection " + protection + ": use encrypt or sign");
   }
@@ -83,8 +83,8 @@ void add_keys_command(CLI::App& app) {
       ->capture_default_str();
   init_cmd->add_option("--days", args->days, "Validity of the CA and everything it signs (default 3650)");
   init_cmd->add_option("--protection", args->protection,
-                       "Discovery, liveliness and whole-message protection: encrypt or sign (swarm data is always "
-                       "encrypted)")
+                       "Discovery, liveliness, whole-message and submessage protection: encrypt or sign (swarm data "
+                       "is always encrypted; sign saves ~8% CPU, see docs/security.md)")
       ->capture_default_str();
   init_cmd->callback([args] { init(*args); });
 

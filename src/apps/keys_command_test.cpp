@@ -20,7 +20,11 @@ using test::run_cli;
 
 class KeysCommandTest : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = (test::fresh_dir("keys_cli") / "swarm").string(); }
+  void SetUp() override {
+    // One directory per test: ctest runs them in parallel processes.
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = (test::fresh_dir("keys_cli_" + name) / "swarm").string();
+  }
   void TearDown() override { fs::remove_all(fs::path(dir_).parent_path()); }
   std::string dir_;
 };

@@ -26,7 +26,10 @@ namespace dsswarm::security {
 struct HandshakeWatchdogConfig {
   // A remote participant alive this long without a matched endpoint is stuck.
   // A handshake takes ~0.2 s on loopback and a few seconds under heavy loss.
-  double stuck_after_s = 10.0;
+  // Keep it above the participant lease duration (Cyclone's default 10 s): a
+  // peer killed without a goodbye stays in discovery until its lease expires,
+  // and after a recreation it can never match the new participant.
+  double stuck_after_s = 15.0;
   // Minimum time between two recreations; doubles after each recreation that
   // is followed by another stuck participant, back to this once all are matched.
   double first_backoff_s = 30.0;

@@ -9,7 +9,7 @@ namespace {
 
 using Clock = HandshakeWatchdog::Clock;
 
-class WatchdogTest : public ::testing::Test {
+class HandshakeWatchdogTest : public ::testing::Test {
  protected:
   HandshakeWatchdogConfig config() const {
     HandshakeWatchdogConfig c;
@@ -23,7 +23,7 @@ class WatchdogTest : public ::testing::Test {
   Clock::time_point t0_ = Clock::now();
 };
 
-TEST_F(WatchdogTest, APeerThatMatchesInTimeIsNeverStuck) {
+TEST_F(HandshakeWatchdogTest, APeerThatMatchesInTimeIsNeverStuck) {
   HandshakeWatchdog w(config());
   EXPECT_FALSE(w.update({"b"}, {}, at(0)));
   EXPECT_FALSE(w.update({"b"}, {"b"}, at(9)));
@@ -31,7 +31,7 @@ TEST_F(WatchdogTest, APeerThatMatchesInTimeIsNeverStuck) {
   EXPECT_TRUE(w.stuck(at(100)).empty());
 }
 
-TEST_F(WatchdogTest, APeerAliveButUnmatchedTooLongAsksForARecreation) {
+TEST_F(HandshakeWatchdogTest, APeerAliveButUnmatchedTooLongAsksForARecreation) {
   HandshakeWatchdog w(config());
   EXPECT_FALSE(w.update({"a", "b"}, {"a"}, at(0)));
   EXPECT_FALSE(w.update({"a", "b"}, {"a"}, at(9.9)));
@@ -39,7 +39,7 @@ TEST_F(WatchdogTest, APeerAliveButUnmatchedTooLongAsksForARecreation) {
   EXPECT_EQ(w.stuck(at(10)), std::vector<std::string>{"b"});
 }
 
-TEST_F(WatchdogTest, APeerThatLeavesStopsCounting) {
+TEST_F(HandshakeWatchdogTest, APeerThatLeavesStopsCounting) {
   HandshakeWatchdog w(config());
   w.update({"b"}, {}, at(0));
   EXPECT_FALSE(w.update({}, {}, at(5)));
@@ -47,7 +47,7 @@ TEST_F(WatchdogTest, APeerThatLeavesStopsCounting) {
   EXPECT_TRUE(w.update({"b"}, {}, at(22)));
 }
 
-TEST_F(WatchdogTest, RecreationsBackOffExponentiallyUpToTheCap) {
+TEST_F(HandshakeWatchdogTest, RecreationsBackOffExponentiallyUpToTheCap) {
   HandshakeWatchdog w(config());
   w.update({"x"}, {}, at(0));  // x never matches (an intruder, say)
   double t = 10;
@@ -63,7 +63,7 @@ TEST_F(WatchdogTest, RecreationsBackOffExponentiallyUpToTheCap) {
   EXPECT_EQ(w.recreations(), 5u);
 }
 
-TEST_F(WatchdogTest, AfterARecreationMatchedPeersGetTimeToMatchTheNewParticipant) {
+TEST_F(HandshakeWatchdogTest, AfterARecreationMatchedPeersGetTimeToMatchTheNewParticipant) {
   HandshakeWatchdog w(config());
   w.update({"a", "b"}, {"a"}, at(0));
   ASSERT_TRUE(w.update({"a", "b"}, {"a"}, at(10)));
@@ -75,7 +75,7 @@ TEST_F(WatchdogTest, AfterARecreationMatchedPeersGetTimeToMatchTheNewParticipant
   EXPECT_TRUE(w.stuck(at(60)).empty());
 }
 
-TEST_F(WatchdogTest, BackoffResetsOnceEveryPeerIsMatched) {
+TEST_F(HandshakeWatchdogTest, BackoffResetsOnceEveryPeerIsMatched) {
   HandshakeWatchdog w(config());
   w.update({"b"}, {}, at(0));
   ASSERT_TRUE(w.update({"b"}, {}, at(10)));
@@ -88,7 +88,7 @@ TEST_F(WatchdogTest, BackoffResetsOnceEveryPeerIsMatched) {
   EXPECT_TRUE(w.update({"b", "c"}, {"b"}, at(90)));  // 30 s after, not 60
 }
 
-TEST_F(WatchdogTest, BadConfigIsRefused) {
+TEST_F(HandshakeWatchdogTest, BadConfigIsRefused) {
   HandshakeWatchdogConfig c;
   c.stuck_after_s = 0;
   EXPECT_THROW(HandshakeWatchdog{c}, ConfigError);

@@ -62,7 +62,7 @@ TEST_F(SecurityRestartTest, ExchangeResumesAfterAPeerIsKilledAndRestartedWithThe
 // participant keeps the CRL it loaded, so only recreating it (what the
 // watchdog does when a peer stays unmatched) lets x in. b, with the CRL
 // without x, talks to both all along.
-class WatchdogTest : public PeerFixture {
+class HandshakeWatchdogDdsTest : public PeerFixture {
  protected:
   struct Swarm {
     fs::path keys_a, keys_bx;
@@ -90,7 +90,7 @@ std::size_t index_of(const std::vector<std::string>& lines, const std::string& p
   return lines.size();
 }
 
-TEST_F(WatchdogTest, RecreatesTheParticipantWhenAPeerStaysUnmatchedAndTheExchangeResumes) {
+TEST_F(HandshakeWatchdogDdsTest, RecreatesTheParticipantWhenAPeerStaysUnmatchedAndTheExchangeResumes) {
   const int domain = 166;
   const Swarm s = make_swarm(domain);
   PeerProcess& a = start_a(domain, s, {"--recover-s", "2"});
@@ -107,7 +107,7 @@ TEST_F(WatchdogTest, RecreatesTheParticipantWhenAPeerStaysUnmatchedAndTheExchang
   EXPECT_TRUE(b.wait_for("first x ", kExchangeTimeoutS));
 }
 
-TEST_F(WatchdogTest, WithoutItThePeerStaysUnmatched) {
+TEST_F(HandshakeWatchdogDdsTest, WithoutItThePeerStaysUnmatched) {
   const int domain = 167;
   const Swarm s = make_swarm(domain);
   PeerProcess& a = start_a(domain, s, {});

@@ -36,7 +36,8 @@ struct Bench {
   int domain = 170;
   int repeats = 10;
   int peers = 8;
-  int samples = 100;
+  int samples = 500;
+  int stream_repeats = 3;
   fs::path dir;
 };
 
@@ -97,11 +98,13 @@ std::pair<double, double> all_matched_ms(const Bench& b, const fs::path& keys) {
 
 struct Stream {
   double mb_per_s = -1, writer_cpu_s = 0, reader_cpu_s = 0;
+  // CPU milliseconds (writer + reader) per MB delivered.
+  double cpu_ms_per_mb(int samples) const { return 1000 * (writer_cpu_s + reader_cpu_s) / samples; }
 };
 
 // p0 writes `samples` 1 MB samples as fast as reliable KEEP_ALL allows once
 // matched; p1 takes them. Throughput between p1's first and last sample.
-Stream one_mb_stream(const Bench& b, const fs::path& keys) {
+Stream one_run(const Bench& b, const fs::path& keys) {
   constexpr std::size_t kBytes = 1'000'000;
   const std::string n = std::to_string(b.samples);
   auto reader = peer(b, keys, "p1", {"--silent", "--keep-all", "--expect", n});
@@ -118,6 +121,18 @@ Stream one_mb_stream(const Bench& b, const fs::path& keys) {
   s.writer_cpu_s = writer->cpu_seconds();
   s.reader_cpu_s = reader->cpu_seconds();
   return s;
+}
+
+// Median over the stream repeats, field by field.
+Stream one_mb_stream(const Bench& b, const fs::path& keys) {
+  std::vector<double> rate, writer, reader;
+  for (int r = 0; r < b.stream_repeats; ++r) {
+    const Stream s = one_run(b, keys);
+    rate.push_back(s.mb_per_s);
+    writer.push_back(s.writer_cpu_s);
+    reader.push_back(s.reader_cpu_s);
+  }
+  return {dsswarm::median_in_place(rate), dsswarm::median_in_place(writer), dsswarm::median_in_place(reader)};
 }
 
 GovernanceOptions protection(ProtectionKind rtps, ProtectionKind metadata, ProtectionKind data) {
@@ -143,26 +158,30 @@ void measure_handshakes(const Bench& b, const fs::path& secured, nlohmann::json&
   }
 }
 
-void print_stream(const std::string& label, const Stream& s, nlohmann::json& out) {
-  fmt::print("  {:<52} {:7.1f} MB/s  cpu writer {:.2f} s, reader {:.2f} s\n", label, s.mb_per_s, s.writer_cpu_s,
-             s.reader_cpu_s);
-  out["stream_1mb"][label] = {{"mb_per_s", s.mb_per_s}, {"writer_cpu_s", s.writer_cpu_s},
+void print_stream(const Bench& b, const std::string& label, const Stream& s, nlohmann::json& out) {
+  fmt::print("  {:<48} {:6.0f} MB/s  {:5.2f} CPU ms/MB (writer {:.2f} s, reader {:.2f} s)\n", label, s.mb_per_s,
+             s.cpu_ms_per_mb(b.samples), s.writer_cpu_s, s.reader_cpu_s);
+  out["stream_1mb"][label] = {{"mb_per_s", s.mb_per_s},
+                              {"cpu_ms_per_mb", s.cpu_ms_per_mb(b.samples)},
+                              {"writer_cpu_s", s.writer_cpu_s},
                               {"reader_cpu_s", s.reader_cpu_s}};
 }
 
 void measure_streams(const Bench& b, nlohmann::json& out) {
   using PK = ProtectionKind;
   const std::vector<std::pair<std::string, GovernanceOptions>> variants{
-      {"rtps ENCRYPT, swarm metadata ENCRYPT, data ENCRYPT", protection(PK::kEncrypt, PK::kEncrypt, PK::kEncrypt)},
-      {"rtps SIGN, swarm metadata SIGN, data ENCRYPT", protection(PK::kSign, PK::kSign, PK::kEncrypt)},
-      {"rtps NONE, swarm metadata NONE, data ENCRYPT", protection(PK::kNone, PK::kNone, PK::kEncrypt)},
-      {"rtps SIGN, swarm metadata SIGN, data SIGN", protection(PK::kSign, PK::kSign, PK::kSign)},
-      {"rtps NONE, swarm metadata NONE, data NONE", protection(PK::kNone, PK::kNone, PK::kNone)}};
-  fmt::print("1 MB samples, {} per run, reliable KEEP_ALL:\n", b.samples);
-  print_stream("unsecured", one_mb_stream(b, ""), out);
+      {"rtps ENCRYPT, metadata ENCRYPT, data ENCRYPT", protection(PK::kEncrypt, PK::kEncrypt, PK::kEncrypt)},
+      {"rtps SIGN, metadata SIGN, data ENCRYPT", protection(PK::kSign, PK::kSign, PK::kEncrypt)},
+      {"rtps NONE, metadata SIGN, data ENCRYPT", protection(PK::kNone, PK::kSign, PK::kEncrypt)},
+      {"rtps NONE, metadata NONE, data ENCRYPT", protection(PK::kNone, PK::kNone, PK::kEncrypt)},
+      {"rtps SIGN, metadata SIGN, data SIGN", protection(PK::kSign, PK::kSign, PK::kSign)},
+      {"rtps NONE, metadata NONE, data SIGN", protection(PK::kNone, PK::kNone, PK::kSign)},
+      {"rtps NONE, metadata NONE, data NONE", protection(PK::kNone, PK::kNone, PK::kNone)}};
+  fmt::print("1 MB samples, {} per run, reliable KEEP_ALL, median of {} runs:\n", b.samples, b.stream_repeats);
+  print_stream(b, "unsecured", one_mb_stream(b, ""), out);
   for (std::size_t i = 0; i < variants.size(); ++i) {
-    print_stream(variants[i].first, one_mb_stream(b, make_keys(b, fmt::format("variant{}", i), variants[i].second, 2)),
-                 out);
+    const fs::path keys = make_keys(b, fmt::format("variant{}", i), variants[i].second, 2);
+    print_stream(b, variants[i].first, one_mb_stream(b, keys), out);
   }
 }
 
@@ -175,6 +194,7 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", b.repeats, "Repeats of the first-sample measurement")->capture_default_str();
   app.add_option("--peers", b.peers, "Peers started together for the handshake measurement")->capture_default_str();
   app.add_option("--samples", b.samples, "1 MB samples per stream")->capture_default_str();
+  app.add_option("--stream-repeats", b.stream_repeats, "Runs per protection variant")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   b.dir = fs::temp_directory_path() / ("dsswarm_security_bench_" + std::to_string(::getpid()));
   fs::remove_all(b.dir);
