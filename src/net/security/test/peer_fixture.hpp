@@ -58,7 +58,11 @@ class PeerFixture : public ::testing::Test {
     if (!keys.empty()) args.insert(args.end(), {"--keys", keys.string()});
     args.insert(args.end(), extra.begin(), extra.end());
     const auto log = root_ / (name + "." + std::to_string(peers_.size()) + ".stderr");
-    peers_.push_back(std::make_unique<PeerProcess>(SECURITY_TEST_PEER, args, log));
+    if (!launcher_.empty()) {  // e.g. ip netns exec NS security_test_peer ...
+      args.insert(args.begin(), SECURITY_TEST_PEER);
+      args.insert(args.begin(), launcher_.begin() + 1, launcher_.end());
+    }
+    peers_.push_back(std::make_unique<PeerProcess>(launcher_.empty() ? SECURITY_TEST_PEER : launcher_[0], args, log));
     names_.push_back(name);
     return *peers_.back();
   }
@@ -66,6 +70,7 @@ class PeerFixture : public ::testing::Test {
   std::filesystem::path root_;
   std::vector<std::unique_ptr<PeerProcess>> peers_;
   std::vector<std::string> names_;
+  std::vector<std::string> launcher_;  // program and arguments that run the peer; empty: run it directly
 };
 
 // The origin names of every "first <origin> <incarnation> <ms>" line.

@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
   app.add_flag("--silent", a.silent, "do not publish");
   app.add_flag("--keep-all", a.keep_all, "KEEP_ALL history (throughput), else KEEP_LAST 8");
   app.add_option("--wait-matched", a.wait_matched, "publish once the writer matched this many readers (ours too)");
-  app.add_option("--lifetime-s", a.lifetime_s);
+  app.add_option("--lifetime-s", a.lifetime_s)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   app.add_option("--recover-s", a.recover_s);
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGTERM, on_signal);
