@@ -76,6 +76,18 @@ std::vector<std::size_t> victim_heard(const std::vector<PeerProcess*>& peers) {
   return n;
 }
 
+// Prints which peers have exited (and how); true if any has.
+bool report_exits(std::vector<PeerProcess*>& peers) {
+  bool any = false;
+  for (std::size_t i = 0; i < peers.size(); ++i) {
+    if (const auto code = peers[i]->exit_code(0)) {
+      std::printf("  %s exited with status %d (128+N: signal N); see its .stderr\n", peer_name(static_cast<int>(i)).c_str(), *code);
+      any = true;
+    }
+  }
+  return any;
+}
+
 TEST_F(SecurityRestartLossTest, DISABLED_RestartsUnderLossResume) {
   const int domain = 168;
   const fs::path keys = make_keys("keys", domain, {"p0", "p1", "p2", "p3"});
@@ -99,6 +111,7 @@ TEST_F(SecurityRestartLossTest, DISABLED_RestartsUnderLossResume) {
     std::fflush(stdout);
     EXPECT_TRUE(ok) << "restart " << r + 1;
     resumed += ok ? 1 : 0;
+    if (!ok && report_exits(peers)) break;  // a peer died: later restarts would fail for that reason
   }
   std::printf("%d of %d restarts resumed\n", resumed, restarts);
 }
