@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -22,6 +23,7 @@ namespace {
 
 constexpr int kMaxDomainId = 232;  // highest DDS domain id with the standard port mapping
 constexpr int kMaxDays = 36500;
+constexpr std::size_t kMaxNameLength = 63;
 
 // Serialises commands on one keys directory (two `keys add` at once would
 // otherwise hand out the same serial number).
@@ -126,7 +128,7 @@ void validate_init(const fs::path& dir, const KeysInitOptions& o) {
 
 void validate_robot_name(const std::string& name) {
   const auto ok_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; };
-  if (name.empty() || name.size() > 63 || !std::isalnum(static_cast<unsigned char>(name[0])) ||
+  if (name.empty() || name.size() > kMaxNameLength || !std::isalnum(static_cast<unsigned char>(name[0])) ||
       !std::all_of(name.begin(), name.end(), ok_char)) {
     throw ConfigError("robot name '" + name + "': use 1-63 letters, digits, '_' or '-', starting with a letter or digit");
   }
@@ -164,6 +166,7 @@ namespace {
 Validity robot_validity(const RobotKeyOptions& o, X509* ca_cert) {
   const auto now = std::chrono::system_clock::now();
   const TimePoint ca_end = certificate_not_after(ca_cert);
+  if (ca_end <= now) throw InputError("the swarm CA expired on " + utc_text(ca_end) + ": make new keys with `keys init`");
   if (!o.days) return {now - kClockSkewAllowance, ca_end};
   if (*o.days < 1 || *o.days > kMaxDays) throw ConfigError("--days " + std::to_string(*o.days) + ": must be 1-36500");
   const TimePoint end = now + std::chrono::days(*o.days);
