@@ -9,6 +9,7 @@
 #include "apps/eval_command.hpp"
 #include "apps/filter_command.hpp"
 #include "apps/replay_command.hpp"
+#include "apps/keys_command.hpp"
 #include "apps/run_command.hpp"
 #include "apps/swarm_command.hpp"
 #include "common/errors.hpp"
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   dsswarm::add_eval_command(app);
   dsswarm::add_config_command(app);
   dsswarm::add_replay_command(app);
+  dsswarm::add_keys_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
