@@ -21,6 +21,8 @@ AgentOptions resolved(AgentOptions o) {
     throw ConfigError(fmt::format("'{}' is not a valid robot name (letters, digits, '_', '-', '.'; at most {})", o.name,
                                   kMaxAgentNameLength));
   o.swarm.validate();
+  if (!(o.time_scale > 0.0)) throw ConfigError("agent: the time scale (playback rate) must be > 0");
+  o.swarm.exchange_timeout *= o.time_scale;  // the same wall time on the play clock
   if (!(o.heartbeat_period > 0.0) || !(o.peer_timeout > o.heartbeat_period))
     throw ConfigError("agent: the peer timeout must exceed the heartbeat period, both > 0");
   if (o.incarnation == 0)
@@ -75,6 +77,7 @@ AgentRuntime::~AgentRuntime() {
 }
 
 double AgentRuntime::now() const { return std::chrono::duration<double>(SteadyClock::now() - started_).count(); }
+double AgentRuntime::swarm_now() const { return now() * options_.time_scale; }
 
 void AgentRuntime::run(const std::atomic<bool>& stop) {
   swarm_thread_ = std::thread([this] { swarm_loop(); });
@@ -155,7 +158,7 @@ void AgentRuntime::fire(std::vector<Trigger> due) {
 void AgentRuntime::swarm_loop() {
   while (!stop_swarm_.load()) {
     std::vector<std::vector<std::uint8_t>> arrived = link_.receive(50ms);
-    const double t = now();
+    const double t = swarm_now();
     std::lock_guard lock(engine_mutex_);
     for (const std::vector<std::uint8_t>& bytes : arrived) {
       protocol::MessageGate::Verdict v = gate_.admit(bytes);
@@ -172,29 +175,19 @@ void AgentRuntime::swarm_loop() {
     }
     for (const Trigger& f : fired) start_encounter(f.peer, f.encounter, t);
     engine_->tick(t);
-    drop_silent_peers(t);
-    flush_engine(t);
+    drop_silent_peers(now());
+    flush_engine();
   }
 }
 
 void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double t) {
   const std::string& from = m.header.sender;
   if (const auto* h = std::get_if<protocol::Heartbeat>(&m.body)) {
-    peers_[from] = Peer{h->status, t, false};
+    peers_[from] = Peer{h->status, now(), false};
     return;
   }
   if (const auto* p = std::get_if<protocol::Proximity>(&m.body)) {
-    if (p->a != options_.name && p->b != options_.name) return;
-    const bool am_a = p->a == options_.name;
-    const std::string& peer = am_a ? p->b : p->a;
-    const double stamp = am_a ? p->a_stamp : p->b_stamp;
-    if (std::isnan(stamp)) {
-      start_encounter(peer, p->event, t);
-      return;
-    }
-    std::lock_guard tl(trigger_mutex_);
-    std::vector<Trigger> now_due = triggers_.arm({peer, p->event, stamp, SteadyClock::now(), false});
-    fire(std::move(now_due));
+    on_proximity(*p, t);
     return;
   }
   const std::uint64_t id = encounter_of(m.body);
@@ -208,10 +201,28 @@ void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double 
   engine_->receive(m, bytes, t);
 }
 
+void AgentRuntime::on_proximity(const protocol::Proximity& p, double t) {
+  if (p.a != options_.name && p.b != options_.name) return;
+  const bool am_a = p.a == options_.name;
+  const std::string& peer = am_a ? p.b : p.a;
+  const double stamp = am_a ? p.a_stamp : p.b_stamp;
+  if (std::isnan(stamp)) {
+    start_encounter(peer, p.event, t);
+    return;
+  }
+  std::lock_guard tl(trigger_mutex_);
+  fire(triggers_.arm({peer, p.event, stamp, SteadyClock::now(), false}));
+}
+
+void AgentRuntime::raise_proximity(const protocol::Proximity& p) {
+  std::lock_guard lock(engine_mutex_);
+  on_proximity(p, swarm_now());
+}
+
 void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, double t) {
   {
     std::lock_guard lock(report_mutex_);
-    event_time_.emplace(id, t);
+    event_time_.emplace(id, now());  // wall time: latencies are the robot's
   }
   engine_->start(peer, id, t);
   if (auto it = held_.find({peer, id}); it != held_.end()) {
@@ -220,14 +231,14 @@ void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, do
   }
 }
 
-void AgentRuntime::flush_engine(double t) {
+void AgentRuntime::flush_engine() {
   for (const protocol::Outgoing& out : engine_->take_outbox()) link_.send(out.recipient, out.bytes);
   for (protocol::EncounterOutcome& o : engine_->take_outcomes()) {
     using End = protocol::EncounterOutcome::End;
     if (o.end == End::accepted || o.end == End::rejected) ++decided_;
     if (o.end == End::accepted) {
       ++accepted_;
-      last_merge_ = t;
+      last_merge_ = now();
     }
     spdlog::info("{}: encounter {} with {}: {}{}", options_.name, o.encounter, o.peer,
                  o.end == End::accepted ? "accepted" : "not merged", o.reason.empty() ? "" : " (" + o.reason + ")");
@@ -237,11 +248,12 @@ void AgentRuntime::flush_engine(double t) {
   open_encounters_ = engine_->open_encounters();
 }
 
-void AgentRuntime::drop_silent_peers(double t) {
+void AgentRuntime::drop_silent_peers(double wall) {
   for (auto& [name, peer] : peers_) {
-    if (peer.lost || t - peer.last_heard <= options_.peer_timeout) continue;
+    if (peer.lost || wall - peer.last_heard <= options_.peer_timeout) continue;
     peer.lost = true;
-    engine_->drop_peer(name, fmt::format("no heartbeat from {} for {:.0f} s", name, options_.peer_timeout), t);
+    engine_->drop_peer(name, fmt::format("no heartbeat from {} for {:.0f} s", name, options_.peer_timeout),
+                       swarm_now());
   }
 }
 

@@ -14,6 +14,13 @@
 namespace dsswarm::agent {
 namespace {
 
+PacedFeedConfig paced(double rate, std::size_t queue) {
+  PacedFeedConfig c;
+  c.rate = rate;
+  c.queue_capacity = queue;
+  return c;
+}
+
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
@@ -70,7 +77,7 @@ struct LiveSwarm {
     }
   }
   PacedFeed* feed_of(const AgentStream& s, double rate) {
-    feeds.push_back(std::make_unique<PacedFeed>(s.scans, s.clock, PacedFeedConfig{.rate = rate, .queue_capacity = 64}));
+    feeds.push_back(std::make_unique<PacedFeed>(s.scans, s.clock, paced(rate, 64)));
     return feeds.back().get();
   }
   void run() {
@@ -126,7 +133,7 @@ TEST(AgentRuntime, GarbageAndReplayedMessagesAreCountedAndChangeNothing) {
   const fs::path out = fresh_dir("garbage");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  PacedFeed feed(s.scans, s.clock, {.rate = 3.0, .queue_capacity = 64});
+  PacedFeed feed(s.scans, s.clock, paced(3.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.5;
@@ -162,7 +169,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   for (std::size_t i = 0; i < second.scans.size(); ++i) second.clock.push_back(0.1 * static_cast<double>(i));
   std::size_t version_before = 0;
   {
-    PacedFeed feed(first.scans, first.clock, {.rate = 5.0, .queue_capacity = 64});
+    PacedFeed feed(first.scans, first.clock, paced(5.0, 64));
     auto link = bus->join("a");
     AgentOptions o = options_for("a", out);
     o.linger = 0.0;
@@ -172,7 +179,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
     version_before = read_checkpoint(out, "a").snapshot.layers.at(0).version;
   }
   ASSERT_GT(version_before, 0u);
-  PacedFeed feed(second.scans, second.clock, {.rate = 5.0, .queue_capacity = 64});
+  PacedFeed feed(second.scans, second.clock, paced(5.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.0;

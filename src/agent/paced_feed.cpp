@@ -33,8 +33,14 @@ PacedFeed::~PacedFeed() {
   player_.join();
 }
 
+std::chrono::steady_clock::time_point steady_start(const std::optional<std::chrono::system_clock::time_point>& start_at) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!start_at) return now;
+  return now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(*start_at - std::chrono::system_clock::now());
+}
+
 void PacedFeed::play() {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = steady_start(config_.start_at);
   for (std::size_t i = 0; i < scans_.size(); ++i) {
     const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                  std::chrono::duration<double>(clock_[i] / config_.rate));

@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -17,7 +18,12 @@ namespace dsswarm::agent {
 struct PacedFeedConfig {
   double rate = 1.0;             // × real time
   std::size_t queue_capacity = 8;  // scans waiting for the robot; the oldest is dropped beyond
+  // When clock 0 is (robots of one launch start together); default: now.
+  std::optional<std::chrono::system_clock::time_point> start_at;
 };
+
+// The steady-clock moment of `start_at` (or now).
+std::chrono::steady_clock::time_point steady_start(const std::optional<std::chrono::system_clock::time_point>& start_at);
 
 class PacedFeed : public ScanFeed {
  public:

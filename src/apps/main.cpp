@@ -6,6 +6,7 @@
 
 #include <exception>
 
+#include "apps/agent_command.hpp"
 #include "apps/eval_command.hpp"
 #include "apps/filter_command.hpp"
 #include "apps/replay_command.hpp"
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   dsswarm::add_config_command(app);
   dsswarm::add_replay_command(app);
   dsswarm::add_keys_command(app);
+  dsswarm::add_agent_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "apps/stop_signal.hpp"
 #include "common/errors.hpp"
 #include "io/logs/log_reader.hpp"
 #include "net/dds.hpp"
@@ -39,30 +40,7 @@ struct ReplayArgs {
   std::string interface = "auto";
 };
 
-// SIGINT/SIGTERM ask the replay to stop; the previous handlers come back after.
-std::atomic<bool> g_stop{false};
-
-class StopOnSignal {
- public:
-  StopOnSignal() {
-    g_stop = false;
-    struct sigaction action {};
-    action.sa_handler = [](int) { g_stop = true; };
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &old_int_);
-    sigaction(SIGTERM, &action, &old_term_);
-  }
-  ~StopOnSignal() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  StopOnSignal(const StopOnSignal&) = delete;
-  StopOnSignal& operator=(const StopOnSignal&) = delete;
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
+std::atomic<bool>& g_stop = StopOnSignal::requested();
 
 // Sleeps until `t` unless asked to stop; returns false when stopped.
 bool sleep_until(Clock::time_point t) {

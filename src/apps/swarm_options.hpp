@@ -1,0 +1,48 @@
+#pragma once
+// How a robot process (or a swarm tool: proximity, trigger, status) reaches
+// the swarm and its own ROS 2 side: two DDS participants, because the swarm
+// may be secured (DDS Security) while ROS 2 viewers cannot join a secured
+// Cyclone domain (../shared/notes/ros2-dds.md).
+//   swarm:  domain --swarm-domain (default 42), partition "dsswarm.<--swarm>";
+//           with --keys DIR: the domain the keys are signed for, secured.
+//   ROS 2:  domain --ros-domain (default $ROS_DOMAIN_ID, else 0), unsecured.
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "net/dds.hpp"
+#include "net/swarm_link.hpp"
+
+namespace dsswarm {
+
+struct SwarmNetOptions {
+  std::string swarm = "default";  // swarm id (partition)
+  std::optional<int> swarm_domain;
+  std::optional<int> ros_domain;
+  std::string interface = "auto";  // network interface; "lo" = this machine only
+  std::string keys;                // keys directory (dsswarm keys): secure the swarm topics
+};
+
+void add_swarm_net_options(CLI::App& command, SwarmNetOptions& options);
+
+class SwarmNet {
+ public:
+  // `name`: this robot's (or tool's) identity; `listen`: read an inbox and heartbeats.
+  SwarmNet(const SwarmNetOptions& options, const std::string& name, bool listen = true);
+  net::Participant& ros();  // made on first use
+  protocol::SwarmLink& link() { return *link_; }
+  net::Participant& swarm_participant() { return *swarm_; }
+  bool secured() const { return secured_; }
+  int swarm_domain() const { return swarm_domain_; }
+
+ private:
+  SwarmNetOptions options_;
+  bool secured_ = false;
+  int swarm_domain_ = 0;
+  std::unique_ptr<net::Participant> swarm_, ros_;
+  std::unique_ptr<net::DdsSwarmLink> link_;
+};
+
+}  // namespace dsswarm
