@@ -159,6 +159,9 @@ void AgentRuntime::swarm_loop() {
   while (!stop_swarm_.load()) {
     std::vector<std::vector<std::uint8_t>> arrived = link_.receive(50ms);
     const double t = swarm_now();
+    // Peers are judged by what had arrived by now: handling this batch may
+    // take a while (placing a peer's scan), and their heartbeats wait meanwhile.
+    const double received_at = now();
     std::lock_guard lock(engine_mutex_);
     for (const std::vector<std::uint8_t>& bytes : arrived) {
       protocol::MessageGate::Verdict v = gate_.admit(bytes);
@@ -175,7 +178,7 @@ void AgentRuntime::swarm_loop() {
     }
     for (const Trigger& f : fired) start_encounter(f.peer, f.encounter, t);
     engine_->tick(t);
-    drop_silent_peers(now());
+    drop_silent_peers(received_at);
     flush_engine();
   }
 }
@@ -183,7 +186,7 @@ void AgentRuntime::swarm_loop() {
 void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double t) {
   const std::string& from = m.header.sender;
   if (const auto* h = std::get_if<protocol::Heartbeat>(&m.body)) {
-    peers_[from] = Peer{h->status, now(), false};
+    peers_[from] = Peer{h->status, now(), false};  // (≥ received_at: it was in the batch)
     return;
   }
   if (const auto* p = std::get_if<protocol::Proximity>(&m.body)) {
