@@ -29,4 +29,20 @@ std::string describe_encounter_events(const std::string& what, std::size_t event
   return text + ")";
 }
 
+std::string describe_simulated_outcome(const nlohmann::json& stats) {
+  std::string text;
+  for (const auto& agent : stats["agents"])
+    text += fmt::format("  {}: ATE RMSE {:.3f} m, map covers {:.0f}% of what the swarm explored, knows {} other robot(s)\n",
+                        agent["name"].get<std::string>(), agent["ate_rmse"].get<double>(),
+                        100.0 * agent["coverage"].get<double>(), agent["knows"].size());
+  if (stats["encounters_accepted"].get<std::size_t>() == 0) return text + "nothing was merged: no encounter was accepted\n";
+  return text + fmt::format(
+                    "worst accepted transform error {:.3f} m / {:.2f}° against the map frames as they stood (causal), "
+                    "{:.3f} m / {:.2f}° against the robots' true relative pose; {} wrong merges (> 0.3 m or 3° against "
+                    "both the robots' true relative pose and the aligned frames)\n",
+                    stats["worst_accepted_causal_error"][0].get<double>(),
+                    stats["worst_accepted_causal_error"][1].get<double>(), stats["worst_accepted_error"][0].get<double>(),
+                    stats["worst_accepted_error"][1].get<double>(), stats["wrong_merges"].get<std::size_t>());
+}
+
 }  // namespace dsswarm

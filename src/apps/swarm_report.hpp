@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "protocol/swarm_session.hpp"
 
 namespace dsswarm {
@@ -14,5 +16,10 @@ namespace dsswarm {
 // `skipped` holds why each event that did not run was skipped (SwarmSession::skipped).
 std::string describe_encounter_events(const std::string& what, std::size_t events, std::size_t run,
                                       const std::vector<std::string>& skipped);
+
+// What a simulated run's stats.json says of the robots and the merges: one
+// line per robot (ATE, coverage, peers known), then the worst accepted error
+// and the wrong merges, or that nothing was merged.
+std::string describe_simulated_outcome(const nlohmann::json& stats);
 
 }  // namespace dsswarm
