@@ -9,6 +9,7 @@
 #include "apps/agent_command.hpp"
 #include "apps/eval_command.hpp"
 #include "apps/filter_command.hpp"
+#include "apps/launch_command.hpp"
 #include "apps/replay_command.hpp"
 #include "apps/keys_command.hpp"
 #include "apps/run_command.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   dsswarm::add_replay_command(app);
   dsswarm::add_keys_command(app);
   dsswarm::add_agent_command(app);
+  dsswarm::add_launch_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -100,16 +100,17 @@ void run_scenario(SwarmArgs a) {
              describe_encounter_events("scripted encounters", planned, session.encounters().size(), session.skipped()));
   for (const EncounterRecord& r : session.encounters())
     fmt::print("  t={:.1f} s {}–{}: {}\n", r.time, r.a, r.b, r.accepted ? "accepted" : "rejected: " + r.reason);
-  if (!scenario.relations.empty()) {
-    // The scenario names its relations: score the run right away.
-    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), relations);
-    const std::filesystem::path out(a.out);
-    write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
-    fmt::print("{}", format_swarm_evaluation(ev));
-  }
+  // The scenario names its relations: score the run right away.
+  if (!scenario.relations.empty()) evaluate_scenario_run(a.out, relations);
 }
 
 }  // namespace
+
+void evaluate_scenario_run(const std::filesystem::path& out, const std::vector<Relation>& relations) {
+  const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(out), relations);
+  write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
+  fmt::print("{}", format_swarm_evaluation(ev));
+}
 
 void add_swarm_command(CLI::App& app) {
   auto args = std::make_shared<SwarmArgs>();

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "protocol/swarm_session.hpp"
+#include "eval/swarm_run.hpp"
 
 namespace dsswarm {
 
@@ -21,5 +21,10 @@ std::string describe_encounter_events(const std::string& what, std::size_t event
 // line per robot (ATE, coverage, peers known), then the worst accepted error
 // and the wrong merges, or that nothing was merged.
 std::string describe_simulated_outcome(const nlohmann::json& stats);
+
+// A launch's robot processes, one line each: scans processed / skipped, CPU
+// seconds, the largest gap between two scans during an encounter, and the
+// proximity-event-to-merged-map latency; then the latency over all robots.
+std::string describe_robot_processes(const SwarmRunResult& run, const std::vector<nlohmann::json>& agent_stats);
 
 }  // namespace dsswarm
