@@ -74,6 +74,7 @@ AgentRuntime::AgentRuntime(AgentOptions options, ScanFeed& feed, protocol::Swarm
 }
 
 AgentRuntime::~AgentRuntime() {
+  if (checkpoint_writer_.joinable()) checkpoint_writer_.join();
   stop_swarm_ = true;
   link_.wake();
   if (swarm_thread_.joinable()) swarm_thread_.join();
@@ -107,6 +108,11 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
   link_.wake();
   swarm_thread_.join();
   heartbeat_thread_.join();
+  {  // encounters still open are recorded as such, not lost
+    std::lock_guard lock(engine_mutex_);
+    engine_->abandon_all(options_.name + " stopped", swarm_now());
+    flush_engine();
+  }
   for (std::uint64_t id : shared_->install_ready()) note_installed(id);
   write_outputs();
 }
@@ -144,7 +150,7 @@ void AgentRuntime::after_scan(const LaserScan& scan, const SlamStep& step) {
   }
   if (options_.checkpoint_period > 0.0 && now() - last_checkpoint_ >= options_.checkpoint_period) {
     last_checkpoint_ = now();
-    checkpoint();
+    checkpoint(false);
   }
 }
 
@@ -319,7 +325,12 @@ AgentReport AgentRuntime::report() const {
   return r;
 }
 
-void AgentRuntime::checkpoint() {
+void AgentRuntime::checkpoint(bool wait) {
+  // Encoding and writing a big map takes a while: off the scan path, one at a time.
+  if (checkpoint_writer_.joinable()) {
+    if (!wait && !checkpoint_written_) return;  // the last one is still being written: skip this round
+    checkpoint_writer_.join();
+  }
   Checkpoint c = shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {
     Checkpoint k;
     k.name = options_.name;
@@ -330,15 +341,20 @@ void AgentRuntime::checkpoint() {
     k.trajectory = trajectory;
     return k;
   });
-  try {
-    write_checkpoint(options_.out, c);
-  } catch (const std::exception& e) {
-    warnings_.note(fmt::format("{}: checkpoint not written: {}", options_.name, e.what()));
-  }
+  checkpoint_written_ = false;
+  checkpoint_writer_ = std::thread([this, c = std::move(c)] {
+    try {
+      write_checkpoint(options_.out, c);
+    } catch (const std::exception& e) {
+      spdlog::warn("{}: checkpoint not written: {}", options_.name, e.what());
+    }
+    checkpoint_written_ = true;
+  });
+  if (wait) checkpoint_writer_.join();
 }
 
 void AgentRuntime::write_outputs() {
-  checkpoint();
+  checkpoint(true);
   const AgentReport r = report();
   shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {
     write_agent_files(options_.out, a, trajectory, r, options_.swarm);

@@ -100,7 +100,7 @@ class AgentRuntime {
   void fire(std::vector<Trigger> due);
   void flush_engine();
   void drop_silent_peers(double now);
-  void checkpoint();
+  void checkpoint(bool wait);  // wait: until written (at exit)
   void write_outputs();
   double now() const;        // s of wall time since start
   double swarm_now() const;  // the same on the play clock (× time_scale)
@@ -150,6 +150,8 @@ class AgentRuntime {
   std::atomic<std::uint64_t> processed_{0};
   std::thread swarm_thread_;
   std::thread heartbeat_thread_;
+  std::thread checkpoint_writer_;
+  std::atomic<bool> checkpoint_written_{true};
 };
 
 }  // namespace dsswarm::agent

@@ -323,6 +323,10 @@ void EncounterEngine::drop_peer(const std::string& peer, const std::string& why,
   for (const Key& k : keys) finish(k, EncounterOutcome::End::abandoned, why, now);
 }
 
+void EncounterEngine::abandon_all(const std::string& why, double now) {
+  while (!open_.empty()) finish(open_.begin()->first, EncounterOutcome::End::abandoned, why, now);
+}
+
 void EncounterEngine::tick(double now) {
   std::vector<std::pair<Key, const char*>> late;
   for (const auto& [key, x] : open_)

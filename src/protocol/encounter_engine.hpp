@@ -83,6 +83,8 @@ class EncounterEngine {
   void receive(const Message& message, std::size_t wire_bytes, double now);
   // The peer restarted or vanished: its open encounters are abandoned.
   void drop_peer(const std::string& peer, const std::string& why, double now);
+  // Abandons every open encounter (this robot stops).
+  void abandon_all(const std::string& why, double now);
   // Abandons encounters older than the exchange timeout.
   void tick(double now);
 

@@ -251,6 +251,11 @@ TEST(EncounterEngine, OpenEncountersAreBounded) {
   for (const auto& x : o) EXPECT_NE(x.reason.find("busy"), std::string::npos);
   e.drop_peer("peer0", "vanished", 1.0);
   EXPECT_EQ(e.open_encounters(), 1u);
+  e.abandon_all("stopped", 2.0);
+  EXPECT_EQ(e.open_encounters(), 0u);
+  const auto ended = e.take_outcomes();
+  ASSERT_EQ(ended.size(), 2u);
+  EXPECT_EQ(ended[1].reason, "stopped");
 }
 
 }  // namespace
