@@ -18,6 +18,7 @@
 #include "io/logs/log_reader.hpp"
 #include "net/dds.hpp"
 #include "net/sensor_publisher.hpp"
+#include "sensor/play_clock.hpp"
 
 namespace dsswarm {
 namespace {
@@ -148,13 +149,8 @@ void replay(const ReplayArgs& a) {
 std::vector<std::optional<double>> replay_schedule(const std::vector<double>& stamps, double rate, double start) {
   std::vector<std::optional<double>> out;
   out.reserve(stamps.size());
-  if (stamps.empty()) return out;
-  double clock = stamps.front();
-  for (const double t : stamps) {
-    clock = std::max(clock, t);
-    const double elapsed = clock - stamps.front();
+  for (const double elapsed : play_clock(stamps))
     out.push_back(elapsed < start ? std::nullopt : std::optional<double>((elapsed - start) / rate));
-  }
   return out;
 }
 
