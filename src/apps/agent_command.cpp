@@ -12,6 +12,7 @@
 #include "agent/proximity_player.hpp"
 #include "apps/sim_swarm_run.hpp"
 #include "apps/slam_options.hpp"
+#include "apps/start_time.hpp"
 #include "apps/stop_signal.hpp"
 #include "apps/swarm_options.hpp"
 #include "common/errors.hpp"
@@ -94,12 +95,6 @@ class LiveFeed : public agent::ScanFeed {
  private:
   net::LiveScanSource source_;
 };
-
-std::optional<std::chrono::system_clock::time_point> start_time(const std::optional<double>& unix_seconds) {
-  if (!unix_seconds) return std::nullopt;
-  return std::chrono::system_clock::time_point(
-      std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(*unix_seconds)));
-}
 
 // A log's segment as this robot plays it (file order, or reversed).
 AgentStream log_stream(const AgentArgs& a) {
