@@ -11,8 +11,11 @@
 #include "apps/filter_command.hpp"
 #include "apps/replay_command.hpp"
 #include "apps/keys_command.hpp"
+#include "apps/proximity_command.hpp"
 #include "apps/run_command.hpp"
+#include "apps/status_command.hpp"
 #include "apps/swarm_command.hpp"
+#include "apps/trigger_command.hpp"
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
@@ -31,6 +34,9 @@ int main(int argc, char** argv) {
   dsswarm::add_replay_command(app);
   dsswarm::add_keys_command(app);
   dsswarm::add_agent_command(app);
+  dsswarm::add_proximity_command(app);
+  dsswarm::add_trigger_command(app);
+  dsswarm::add_status_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
