@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "agent/agent_runtime.hpp"
 #include "agent/proximity_player.hpp"
 #include "apps/sim_swarm_run.hpp"
 #include "apps/start_time.hpp"
@@ -25,9 +26,6 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr auto kRetryPause = 100ms;  // between attempts at an undiscovered inbox
-// Agents wait this long (wall time) for the scan an event names, counted from
-// its arrival: a larger lead makes events fire late.
-constexpr double kAgentTriggerPatience = 10.0;
 
 struct ProximityArgs {
   std::string scenario;
@@ -48,9 +46,11 @@ void check(const ProximityArgs& a) {
   if (!(std::isfinite(a.rate) && a.rate > 0.0)) throw ConfigError(fmt::format("--rate {} is not > 0", a.rate));
   if (!(std::isfinite(a.lead) && a.lead >= 0.0)) throw ConfigError(fmt::format("--lead {} is not >= 0", a.lead));
   if (!(std::isfinite(a.wait) && a.wait > 0.0)) throw ConfigError(fmt::format("--wait {} is not > 0", a.wait));
-  if (a.lead >= kAgentTriggerPatience / 2)
+  // Agents wait this long (wall time, from its arrival) for the scan an event names.
+  const double patience = agent::AgentOptions{}.trigger_patience;
+  if (a.lead >= patience / 2)
     spdlog::warn("--lead {} s: agents wait at most {} s for the scan an event names; events may fire late", a.lead,
-                 kAgentTriggerPatience);
+                 patience);
   start_time(a.start_at);  // checks it
 }
 

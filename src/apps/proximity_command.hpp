@@ -4,9 +4,13 @@
 // a Proximity message to the inboxes of both robots, then exits. Each event
 // names, per robot, the stamp of the scan after which it joins
 // (agent::proximity_schedule), so robot processes fed by `replay --scenario`
-// act after exactly the scan the in-process swarm would. The tool's identity
-// in the swarm is "proximity": with --keys it needs that certificate
-// (`dsswarm keys add DIR proximity`; `dsswarm launch` makes it).
+// act after exactly the scan the in-process swarm would. An event goes out
+// --lead seconds of wall time before its time (session time / rate): what it
+// must beat is the delivery to the robots, which takes wall time at any rate;
+// and the agents' trigger patience (10 s) counts from its arrival, so the
+// lead stays well below that. The tool's identity in the swarm is
+// "proximity": with --keys it needs that certificate (`dsswarm keys add DIR
+// proximity`; `dsswarm launch` makes it).
 #include <CLI/CLI.hpp>
 
 #include <atomic>
