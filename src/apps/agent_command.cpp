@@ -44,6 +44,7 @@ struct AgentArgs {
   std::uint64_t world_seed = 1;
   double proximity_range = 3.0;
   double rate = 1.0;
+  std::size_t queue = 8;  // scans waiting for SLAM; the oldest are skipped beyond
   std::optional<double> start_at;  // unix time of clock 0 (launch starts robots together)
   bool no_ros_output = false;
   bool resume = false;
@@ -141,7 +142,7 @@ void run_agent(const AgentArgs& a) {
   std::unique_ptr<agent::ScanFeed> feed;
   std::vector<agent::TimedProximity> sensed;  // a simulated robot's own proximity sensor
   const auto start_at = start_time(a.start_at);
-  const agent::PacedFeedConfig paced{.rate = a.rate, .queue_capacity = 8, .start_at = start_at};
+  const agent::PacedFeedConfig paced{.rate = a.rate, .queue_capacity = a.queue, .start_at = start_at};
   if (a.sim_seed) {
     SimSwarmRun sim = simulate_swarm_run({a.sim_robots, *a.sim_seed, a.world_seed, a.proximity_range});
     o.swarm.encounter.locate.search_radius = a.proximity_range;
@@ -161,7 +162,7 @@ void run_agent(const AgentArgs& a) {
     live.scan_topic = a.scan_topic;
     live.odom_topic = a.odom_topic;
     live.odometry = a.tf_odometry ? net::OdometrySource::kTf : net::OdometrySource::kTopic;
-    live.queue_capacity = 8;
+    live.queue_capacity = a.queue;
     feed = std::make_unique<LiveFeed>(net.ros(), live);
   }
   std::unique_ptr<DdsOutputs> outputs;
@@ -207,6 +208,9 @@ void add_agent_command(CLI::App& app) {
   cmd->add_option("--proximity-range", args->proximity_range, "With --sim: proximity sensor range (m)")
       ->capture_default_str();
   cmd->add_option("--rate", args->rate, "With --log/--sim: playback speed factor")->capture_default_str();
+  cmd->add_option("--queue", args->queue, "Scans that may wait for SLAM; beyond, the oldest are skipped (counted)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{10000}))
+      ->capture_default_str();
   cmd->add_option("--start-at", args->start_at, "With --log/--sim: unix time at which playback starts");
   cmd->add_flag("--no-ros-output", args->no_ros_output, "Do not publish /map, /tf, pose and path");
   cmd->add_flag("--resume", args->resume, "Continue from the checkpoint in --out (after a crash)");

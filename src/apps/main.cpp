@@ -9,6 +9,7 @@
 #include "apps/agent_command.hpp"
 #include "apps/eval_command.hpp"
 #include "apps/filter_command.hpp"
+#include "apps/launch_command.hpp"
 #include "apps/replay_command.hpp"
 #include "apps/keys_command.hpp"
 #include "apps/proximity_command.hpp"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   dsswarm::add_replay_command(app);
   dsswarm::add_keys_command(app);
   dsswarm::add_agent_command(app);
+  dsswarm::add_launch_command(app);
   dsswarm::add_proximity_command(app);
   dsswarm::add_trigger_command(app);
   dsswarm::add_status_command(app);

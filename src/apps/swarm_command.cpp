@@ -4,9 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <limits>
 #include <memory>
 
+#include "apps/sim_swarm_run.hpp"
 #include "apps/slam_options.hpp"
 #include "apps/slam_runner.hpp"
 #include "apps/swarm_report.hpp"
@@ -16,8 +16,6 @@
 #include "eval/swarm_eval.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
-#include "sim/proximity.hpp"
-#include "sim/swarm_sim.hpp"
 
 namespace dsswarm {
 namespace {
@@ -44,57 +42,24 @@ void run_demo(const DemoArgs& a) {
   SwarmConfig config = a.slam.resolve_swarm();
   config.encounter.locate.search_radius = a.range;  // the proximity range bounds where the other robot is
   config.merge = !a.no_merge;
-  SwarmSimConfig sim;
-  sim.robots = a.robots;
-  sim.seed = a.seed;
-  sim.world = swarm_world_config(a.robots);
-  sim.world.seed = a.world_seed;
   const auto t0 = std::chrono::steady_clock::now();
-  const SimulatedSwarm swarm = simulate_swarm(sim);
-  ProximityConfig proximity;
-  proximity.range = a.range;
-  const std::vector<ProximityEvent> near = proximity_events(swarm.world, swarm, proximity);
+  SimSwarmRun sim = simulate_swarm_run({a.robots, a.seed, a.world_seed, a.range});
   fmt::print("simulated {} robot(s) × {} scans, {} proximity events, in {:.2f} s\n", a.robots,
-             swarm.runs.front().log.scans.size(), near.size(),
+             sim.streams.front().scans.size(), sim.events.size(),
              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-
-  std::vector<AgentStream> streams;
-  SwarmTruth truth;
-  for (std::size_t i = 0; i < swarm.runs.size(); ++i) {
-    AgentStream s{swarm.names[i], swarm.runs[i].log.scans, {}};
-    for (const LaserScan& scan : s.scans) s.clock.push_back(scan.timestamp);
-    streams.push_back(std::move(s));
-    Trajectory t;
-    for (const auto& [time, pose] : swarm.runs[i].ground_truth) t.push_back({time, pose});
-    truth.world_poses.push_back(std::move(t));
-  }
-  std::vector<EncounterEvent> events;
-  for (const ProximityEvent& e : near)
-    events.push_back({e.time, static_cast<std::size_t>(e.a), static_cast<std::size_t>(e.b)});
-
-  const std::size_t planned = events.size();
-  SwarmSession session(std::move(streams), std::move(events), config);
+  const std::size_t planned = sim.events.size();
+  SwarmSession session(std::move(sim.streams), std::move(sim.events), config);
   const double seconds = run_swarm_session(session, "demo");
-  const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds, &truth);
+  SwarmOutputOptions options;
+  options.wall_seconds = seconds;
+  options.truth = &sim.truth;
+  const nlohmann::json stats = write_swarm_outputs(a.out, run_result(session), options);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
   fmt::print("{}\n",
              describe_encounter_events("proximity events", planned, session.encounters().size(), session.skipped()));
-  for (const auto& agent : stats["agents"])
-    fmt::print("  {}: ATE RMSE {:.3f} m, map covers {:.0f}% of what the swarm explored, knows {} other robot(s)\n",
-               agent["name"].get<std::string>(), agent["ate_rmse"].get<double>(),
-               100.0 * agent["coverage"].get<double>(), agent["knows"].size());
-  if (stats["encounters_accepted"].get<std::size_t>() == 0) {
-    fmt::print("nothing was merged: no encounter was accepted\n");
-    return;
-  }
-  fmt::print("worst accepted transform error {:.3f} m / {:.2f}° against the map frames as they stood (causal), "
-             "{:.3f} m / {:.2f}° against the robots' true relative pose; {} wrong merges (> 0.3 m or 3° against both "
-             "the robots' true relative pose and the aligned frames)\n",
-             stats["worst_accepted_causal_error"][0].get<double>(), stats["worst_accepted_causal_error"][1].get<double>(),
-             stats["worst_accepted_error"][0].get<double>(), stats["worst_accepted_error"][1].get<double>(),
-             stats["wrong_merges"].get<std::size_t>());
+  fmt::print("{}", describe_simulated_outcome(stats));
 }
 
 struct SwarmArgs {
@@ -125,7 +90,9 @@ void run_scenario(SwarmArgs a) {
   const std::size_t planned = scenario.events.size();
   SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config);
   const double seconds = run_swarm_session(session, scenario.name);
-  const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds);
+  SwarmOutputOptions options;
+  options.wall_seconds = seconds;
+  const nlohmann::json stats = write_swarm_outputs(a.out, run_result(session), options);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
              stats["scans_per_second"].get<double>(), a.out);
   print_encounter_summary(stats);
@@ -133,16 +100,17 @@ void run_scenario(SwarmArgs a) {
              describe_encounter_events("scripted encounters", planned, session.encounters().size(), session.skipped()));
   for (const EncounterRecord& r : session.encounters())
     fmt::print("  t={:.1f} s {}–{}: {}\n", r.time, r.a, r.b, r.accepted ? "accepted" : "rejected: " + r.reason);
-  if (!scenario.relations.empty()) {
-    // The scenario names its relations: score the run right away.
-    const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(a.out), relations);
-    const std::filesystem::path out(a.out);
-    write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
-    fmt::print("{}", format_swarm_evaluation(ev));
-  }
+  // The scenario names its relations: score the run right away.
+  if (!scenario.relations.empty()) evaluate_scenario_run(a.out, relations);
 }
 
 }  // namespace
+
+void evaluate_scenario_run(const std::filesystem::path& out, const std::vector<Relation>& relations) {
+  const SwarmEvaluation ev = evaluate_swarm(read_swarm_output(out), relations);
+  write_file_atomically(out / "evaluation.json", to_json(ev).dump(2) + "\n");
+  fmt::print("{}", format_swarm_evaluation(ev));
+}
 
 void add_swarm_command(CLI::App& app) {
   auto args = std::make_shared<SwarmArgs>();

@@ -16,13 +16,13 @@ int radius(const Image& image, const GridRaster& raster, int base) {
 }
 
 // Encounters where agent 0's frame can place robot a. Returns which kinds were drawn.
-std::pair<bool, bool> draw_encounters(Image& picture, const SwarmSession& s, const GridRaster& raster,
+std::pair<bool, bool> draw_encounters(Image& picture, const SwarmRunResult& s, const GridRaster& raster,
                                       const std::vector<std::optional<Pose2>>& frames) {
   bool accepted = false, rejected = false;
   const int r = radius(picture, raster, 5);
-  for (const EncounterRecord& e : s.encounters()) {
-    for (std::size_t i = 0; i < s.agents(); ++i) {
-      if (s.agent(i).name() != e.a || !frames[i]) continue;
+  for (const EncounterRecord& e : s.encounters) {
+    for (std::size_t i = 0; i < s.agents.size(); ++i) {
+      if (s.agents[i].name != e.a || !frames[i]) continue;
       const Eigen::Vector2d at = *frames[i] * e.a_pose_in_a.translation();
       draw_marker(picture, raster, at, e.accepted ? kAccepted : kRejected, r);
       if (!e.accepted) draw_marker(picture, raster, at, kHole, r - r / 3 - 1);
@@ -34,21 +34,21 @@ std::pair<bool, bool> draw_encounters(Image& picture, const SwarmSession& s, con
 
 }  // namespace
 
-Image swarm_picture(const SwarmSession& s, const GridRaster& raster, const std::vector<std::optional<Pose2>>& frames) {
+Image swarm_picture(const SwarmRunResult& s, const GridRaster& raster, const std::vector<std::optional<Pose2>>& frames) {
   Image picture = render_map(raster, fitting_scale(raster));
   std::vector<LegendEntry> legend;
-  for (std::size_t i = 0; i < s.agents(); ++i) {
+  for (std::size_t i = 0; i < s.agents.size(); ++i) {
     if (!frames[i]) continue;
     const Rgb colour = agent_colour(static_cast<int>(i));
     std::vector<Eigen::Vector2d> pts;
-    for (const SlamStep& step : s.track(i).steps) pts.push_back(*frames[i] * step.pose.translation());
+    for (const StampedPose& p : s.agents[i].trajectory) pts.push_back(*frames[i] * p.pose.translation());
     draw_path(picture, raster, pts, colour);
-    legend.push_back({s.agent(i).name(), colour, LegendEntry::Mark::Line});
+    legend.push_back({s.agents[i].name, colour, LegendEntry::Mark::Line});
   }
   // Starts on top of the paths, encounters on top of everything.
-  for (std::size_t i = 0; i < s.agents(); ++i)
-    if (frames[i] && !s.track(i).steps.empty())
-      draw_ringed_marker(picture, raster, *frames[i] * s.track(i).steps.front().pose.translation(),
+  for (std::size_t i = 0; i < s.agents.size(); ++i)
+    if (frames[i] && !s.agents[i].trajectory.empty())
+      draw_ringed_marker(picture, raster, *frames[i] * s.agents[i].trajectory.front().pose.translation(),
                          agent_colour(static_cast<int>(i)), radius(picture, raster, 4));
   legend.push_back({"start", kStart, LegendEntry::Mark::Disc});
   const auto [accepted, rejected] = draw_encounters(picture, s, raster, frames);

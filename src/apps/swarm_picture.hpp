@@ -5,7 +5,7 @@
 
 #include "grid/grid_raster.hpp"
 #include "io/maps/render.hpp"
-#include "protocol/swarm_session.hpp"
+#include "eval/swarm_run.hpp"
 
 namespace dsswarm {
 
@@ -13,7 +13,7 @@ namespace dsswarm {
 // place (`frames[i]`: agent i's map frame in agent 0's), each in its colour
 // from a disc where it started, the encounters (black disc: accepted, red
 // ring: rejected), and below it a legend and a scale bar.
-Image swarm_picture(const SwarmSession& session, const GridRaster& raster,
+Image swarm_picture(const SwarmRunResult& run, const GridRaster& raster,
                     const std::vector<std::optional<Pose2>>& frames);
 
 }  // namespace dsswarm

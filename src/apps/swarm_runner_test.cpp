@@ -33,7 +33,9 @@ std::vector<AgentStream> streams(const std::vector<std::string>& names) {
 void write_session(const fs::path& dir, const std::vector<std::string>& names) {
   SwarmSession session(streams(names), {}, SwarmConfig{});
   session.run();
-  write_swarm_outputs(dir, session, 1.0);
+  SwarmOutputOptions options;
+  options.wall_seconds = 1.0;
+  write_swarm_outputs(dir, run_result(session), options);
 }
 
 std::vector<fs::path> files_under(const fs::path& dir) {
@@ -89,7 +91,7 @@ TEST(SwarmPicture, LegendScaleBarAndPathsAPersonCanTellApart) {
   session.run();
   const GridRaster raster = session.agent(0).slam().map().finest().to_raster();
   const std::vector<std::optional<Pose2>> frames = {Pose2(), Pose2(0.5, 0.5, 0.0)};
-  const Image picture = swarm_picture(session, raster, frames);
+  const Image picture = swarm_picture(run_result(session), raster, frames);
   const Image map = render_map(raster, fitting_scale(raster));
   ASSERT_GT(picture.height, map.height);
   auto count = [&](Rgb colour, int y0, int y1) {

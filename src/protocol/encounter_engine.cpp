@@ -287,7 +287,7 @@ void EncounterEngine::absorb_transfer(Exchange& x, double now) {
     port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.id);
     x.outcome.merge_ms = ms_since(t0);
   }
-  peers_[x.peer].last_merge = now;
+  peers_[x.peer].last_merge = x.outcome.started;  // from the event, as robots that finish at different moments agree
   finish(key, EncounterOutcome::End::accepted, "", now);
 }
 
