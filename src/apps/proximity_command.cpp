@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -79,9 +80,14 @@ void run_proximity(const ProximityArgs& a) {
   protocol::MessageStamper stamper("proximity", incarnation_now());
   const auto wait = std::chrono::milliseconds(std::llround(a.wait * 1000.0));
   std::atomic<std::size_t> sent{0}, undelivered{0};
+  // Robots missed before (stopped, crashed) get one attempt, not --wait: the others' events must stay on time.
+  std::set<std::string> given_up;
   {
     agent::ProximityPlayer player(schedule, a.rate, a.lead, start_time(a.start_at), [&](const protocol::Proximity& e) {
-      const std::vector<std::string> missed = send_proximity(net.link(), stamper, e, wait, StopOnSignal::requested());
+      const std::vector<std::string> missed =
+          send_proximity(net.link(), stamper, e, wait, StopOnSignal::requested(), given_up);
+      for (const std::string& robot : {e.a, e.b}) given_up.erase(robot);
+      given_up.insert(missed.begin(), missed.end());
       ++sent;
       undelivered += missed.empty() ? 0 : 1;
       fmt::print("event {} at {:.3f} s: {} after {}, {} after {}{}\n", e.event, schedule[e.event].time, e.a,
@@ -107,13 +113,13 @@ std::uint64_t incarnation_now() {
 
 std::vector<std::string> send_proximity(protocol::SwarmLink& link, protocol::MessageStamper& stamper,
                                         const protocol::Proximity& event, std::chrono::milliseconds wait,
-                                        const std::atomic<bool>& stop) {
+                                        const std::atomic<bool>& stop, const std::set<std::string>& given_up) {
   std::vector<std::string> missed;
   const auto deadline = std::chrono::steady_clock::now() + wait;
   for (const std::string& robot : {event.a, event.b}) {
     const std::vector<std::uint8_t> bytes = protocol::encode(stamper.stamp(robot, event));
     while (!link.send(robot, bytes)) {
-      if (stop || std::chrono::steady_clock::now() >= deadline) {
+      if (stop || given_up.count(robot) > 0 || std::chrono::steady_clock::now() >= deadline) {
         missed.push_back(robot);
         break;
       }

@@ -15,6 +15,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,10 +28,11 @@ void add_proximity_command(CLI::App& app);
 
 // Sends `event` to both robots it names (one message to each inbox). A robot
 // whose inbox is not (yet) discovered is tried again until `wait` has passed
-// or `stop` is set. Returns the robots it could not reach.
+// or `stop` is set, except those `given_up` (one attempt). Returns the robots
+// it could not reach.
 std::vector<std::string> send_proximity(protocol::SwarmLink& link, protocol::MessageStamper& stamper,
                                         const protocol::Proximity& event, std::chrono::milliseconds wait,
-                                        const std::atomic<bool>& stop);
+                                        const std::atomic<bool>& stop, const std::set<std::string>& given_up = {});
 
 // A new sender's incarnation: now, in ns since the epoch (as agents take theirs).
 std::uint64_t incarnation_now();

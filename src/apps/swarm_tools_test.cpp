@@ -147,6 +147,20 @@ TEST_F(SwarmToolsTest, ProximitySendsTheScenariosEventsOnTimeWithTheScansToActAf
   EXPECT_NE(out.find("robot1 after (no scan yet)"), std::string::npos) << out;
 }
 
+// A robot that is not there costs the others no more than an attempt per event, and the tool fails.
+TEST_F(SwarmToolsTest, ProximityWithARobotMissingStillReachesTheOtherAndFails) {
+  const fs::path yaml = test::write_tiny_scenario(dir);
+  FakeRobot robot1(participant, "robot1");
+  const std::size_t tool = run({"proximity", yaml.string(), "--rate", "2", "--wait", "0.5"});
+  const auto deadline = Clock::now() + 20s;
+  while (robot1.arrivals.size() < 3 && Clock::now() < deadline) robot1.poll(50ms);
+  EXPECT_EQ(group.wait(tool, kProcessTimeout), 1) << output();
+  ASSERT_EQ(robot1.arrivals.size(), 3u) << output();
+  EXPECT_EQ(robot1.arrivals[2].event.event, 2u);
+  EXPECT_NE(output().find("error: 3 of 3 events did not reach both robots"), std::string::npos) << output();
+  EXPECT_NE(output().find("NOT delivered to robot2"), std::string::npos) << output();
+}
+
 TEST_F(SwarmToolsTest, ProximityOfTheSimulatedSwarmFollowsItsSchedule) {
   FakeRobot robot1(participant, "robot1"), robot2(participant, "robot2");
   // At a high rate, without lead: the events of the simulator's first minutes arrive within seconds.
