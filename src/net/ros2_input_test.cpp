@@ -149,6 +149,7 @@ TEST(LiveScanSource, ABackwardPlayedStreamGetsEachScansOwnOdometry) {
   Participant agent(loopback_config());
   LiveInputConfig config = input_config();
   config.queue_capacity = 64;
+  config.wait_for_odometry = 2.0;  // a loaded machine may delay the odometry; the old rule did not wait at all
   LiveScanSource input(agent, config);
   Topic<ros::Odometry> odom_topic(robot, ros_topic_name(config.ns, "odom"));
   Writer<ros::Odometry> odom(odom_topic, ros_default(50));
