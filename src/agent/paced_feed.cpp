@@ -1,20 +1,8 @@
 #include "agent/paced_feed.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace dsswarm::agent {
-
-std::vector<double> play_clock(const std::vector<LaserScan>& scans) {
-  std::vector<double> clock;
-  clock.reserve(scans.size());
-  double latest = scans.empty() ? 0.0 : scans.front().timestamp;
-  for (const LaserScan& s : scans) {
-    latest = std::max(latest, s.timestamp);
-    clock.push_back(latest - scans.front().timestamp);
-  }
-  return clock;
-}
 
 PacedFeed::PacedFeed(std::vector<LaserScan> scans, std::vector<double> clock, const PacedFeedConfig& config)
     : scans_(std::move(scans)), clock_(std::move(clock)), config_(config) {

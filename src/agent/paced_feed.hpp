@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "agent/scan_feed.hpp"
+#include "sensor/play_clock.hpp"  // the clocks PacedFeed plays by
 
 namespace dsswarm::agent {
 
@@ -52,9 +53,5 @@ class PacedFeed : public ScanFeed {
   std::atomic<std::uint64_t> received_{0}, dropped_{0};
   std::thread player_;  // last: starts once everything above exists
 };
-
-// The play clock of a log as `dsswarm replay` and scenarios use it: scan i at
-// t_i − t_0, held at the running maximum where timestamps run backwards.
-std::vector<double> play_clock(const std::vector<LaserScan>& scans);
 
 }  // namespace dsswarm::agent

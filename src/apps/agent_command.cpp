@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <atomic>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "agent/proximity_player.hpp"
 #include "apps/sim_swarm_run.hpp"
 #include "apps/slam_options.hpp"
+#include "apps/start_time.hpp"
 #include "apps/stop_signal.hpp"
 #include "apps/swarm_options.hpp"
 #include "common/errors.hpp"
@@ -20,6 +22,7 @@
 #include "net/ros2_input.hpp"
 #include "net/ros2_output.hpp"
 #include "net/swarm_link.hpp"
+#include "sensor/play_clock.hpp"
 
 namespace dsswarm {
 namespace {
@@ -96,29 +99,19 @@ class LiveFeed : public agent::ScanFeed {
   net::LiveScanSource source_;
 };
 
-std::optional<std::chrono::system_clock::time_point> start_time(const std::optional<double>& unix_seconds) {
-  if (!unix_seconds) return std::nullopt;
-  return std::chrono::system_clock::time_point(
-      std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(*unix_seconds)));
-}
-
 // A log's segment as this robot plays it (file order, or reversed).
 AgentStream log_stream(const AgentArgs& a) {
   SensorLog log = read_log(a.log);
   for (const std::string& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
-  std::vector<double> clock = agent::play_clock(log.scans);
+  std::vector<double> clock = play_clock(log.scans);
   AgentStream s{a.name, {}, {}};
   const double from = a.range.empty() ? 0.0 : a.range[0], to = a.range.empty() ? 1e300 : a.range[1];
   for (std::size_t i = 0; i < log.scans.size(); ++i)
     if (clock[i] >= from && clock[i] <= to) s.scans.push_back(std::move(log.scans[i]));
   if (s.scans.empty()) throw ConfigError(fmt::format("--range {} {}: no scan of {} lies in it", from, to, a.log));
   if (a.backward) std::reverse(s.scans.begin(), s.scans.end());
-  // Backward: the clock runs on the reversed stamps, held at their running maximum.
-  std::vector<LaserScan> mirrored = s.scans;
-  if (a.backward)
-    for (LaserScan& m : mirrored) m.timestamp = -m.timestamp;
-  s.clock = agent::play_clock(mirrored);
+  s.clock = play_clock(s.scans, a.backward ? PlayDirection::backward : PlayDirection::forward);
   return s;
 }
 

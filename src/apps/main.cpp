@@ -12,8 +12,11 @@
 #include "apps/launch_command.hpp"
 #include "apps/replay_command.hpp"
 #include "apps/keys_command.hpp"
+#include "apps/proximity_command.hpp"
 #include "apps/run_command.hpp"
+#include "apps/status_command.hpp"
 #include "apps/swarm_command.hpp"
+#include "apps/trigger_command.hpp"
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
@@ -33,6 +36,9 @@ int main(int argc, char** argv) {
   dsswarm::add_keys_command(app);
   dsswarm::add_agent_command(app);
   dsswarm::add_launch_command(app);
+  dsswarm::add_proximity_command(app);
+  dsswarm::add_trigger_command(app);
+  dsswarm::add_status_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

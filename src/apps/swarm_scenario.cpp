@@ -12,6 +12,7 @@
 
 #include "common/agent_name.hpp"
 #include "common/errors.hpp"
+#include "sensor/play_clock.hpp"
 
 namespace dsswarm {
 namespace {
@@ -209,13 +210,12 @@ AgentStream build_stream(const AgentSpec& a, const SensorLog& log, const Segment
   if (a.backward) std::reverse(stream.scans.begin(), stream.scans.end());
   const double t_first = stream.scans.front().timestamp;
   const double sign = a.backward ? -1.0 : 1.0;
-  double elapsed = 0.0;
+  const std::vector<double> elapsed =
+      play_clock(stream.scans, a.backward ? PlayDirection::backward : PlayDirection::forward);
   std::size_t held = 0;
-  for (const LaserScan& scan : stream.scans) {
-    const double since_first = sign * (scan.timestamp - t_first);
-    if (since_first < elapsed) ++held;
-    elapsed = std::max(elapsed, since_first);
-    stream.clock.push_back(a.start + elapsed);
+  for (std::size_t i = 0; i < elapsed.size(); ++i) {
+    held += elapsed[i] > sign * (stream.scans[i].timestamp - t_first) ? 1 : 0;
+    stream.clock.push_back(a.start + elapsed[i]);
   }
   if (held > 0) {
     warnings.push_back(fmt::format(
