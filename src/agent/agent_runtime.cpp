@@ -16,6 +16,10 @@ namespace {
 
 using namespace std::chrono_literals;
 
+// Messages held for one encounter whose scan has not come yet: an offer and a
+// placement at most in a well-behaved exchange.
+constexpr std::size_t kMaxHeldPerEncounter = 64;
+
 AgentOptions resolved(AgentOptions o) {
   if (!is_valid_agent_name(o.name))
     throw ConfigError(fmt::format("'{}' is not a valid robot name (letters, digits, '_', '-', '.'; at most {})", o.name,
@@ -197,7 +201,8 @@ void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double 
   {
     std::lock_guard tl(trigger_mutex_);
     if (triggers_.armed(from, id)) {  // our view is not taken yet: it waits for its scan
-      held_[{from, id}].emplace_back(m, bytes);
+      auto& held = held_[{from, id}];
+      if (held.size() < kMaxHeldPerEncounter) held.emplace_back(m, bytes);  // beyond: the exchange times out
       return;
     }
   }

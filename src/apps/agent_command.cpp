@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <atomic>
 #include <memory>
+#include <thread>
 
 #include "agent/agent_runtime.hpp"
 #include "agent/paced_feed.hpp"
@@ -184,7 +186,17 @@ void run_agent(const AgentArgs& a) {
                : a.log.empty() ? fmt::format("ROS 2 topics under '{}'", a.ns.empty() ? "/" : a.ns)
                                : a.log,
                o.out.string());
+  // The swarm participant's upkeep (lost security handshakes), beside the runtime.
+  std::atomic<bool> finished{false};
+  std::thread upkeep([&] {
+    while (!finished) {
+      for (int i = 0; i < 10 && !finished; ++i) std::this_thread::sleep_for(100ms);
+      if (!finished) net.maintain();
+    }
+  });
   runtime.run(StopOnSignal::requested());
+  finished = true;
+  upkeep.join();
   const agent::AgentReport r = runtime.report();
   fmt::print("{}: {} scans processed, {} skipped; {} encounters, {} accepted; {} messages refused; outputs in {}\n",
              a.name, r.status.scans_processed, r.status.scans_skipped, r.status.encounters,

@@ -5,7 +5,12 @@
 #include <cstdlib>
 
 #include "common/errors.hpp"
+#include "net/security/discovery_probe.hpp"
+#include "net/security/handshake_watchdog.hpp"
 #include "net/security/security_config.hpp"
+
+#include <shared_mutex>
+#include <spdlog/spdlog.h>
 
 namespace dsswarm {
 namespace {
@@ -43,13 +48,40 @@ void add_swarm_net_options(CLI::App& cmd, SwarmNetOptions& o) {
   cmd.add_option("--keys", o.keys, "Keys directory (dsswarm keys): the swarm topics use DDS Security");
 }
 
-SwarmNet::SwarmNet(const SwarmNetOptions& options, const std::string& name, bool listen) : options_(options) {
-  std::string security;
+// The link the runtime holds: forwards to the current DDS link, which
+// maintain() may replace (with its participant) while the runtime runs.
+class SwarmNet::StableLink : public protocol::SwarmLink {
+ public:
+  explicit StableLink(SwarmNet& net) : net_(net) {}
+  bool send(const std::string& recipient, std::span<const std::uint8_t> bytes) override {
+    std::shared_lock lock(mutex);
+    return net_.dds_link_->send(recipient, bytes);
+  }
+  std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override {
+    std::shared_lock lock(mutex);
+    return net_.dds_link_->receive(timeout);
+  }
+  void wake() override {
+    std::shared_lock lock(mutex);
+    net_.dds_link_->wake();
+  }
+  std::shared_mutex mutex;
+
+ private:
+  SwarmNet& net_;
+};
+
+struct SwarmNet::Watch {
+  security::HandshakeWatchdog watchdog;
+  std::unique_ptr<security::DiscoveryProbe> probe;
+};
+
+SwarmNet::SwarmNet(const SwarmNetOptions& options, const std::string& name, bool listen)
+    : options_(options), name_(name), listen_(listen) {
   swarm_domain_ = options.swarm_domain.value_or(kDefaultSwarmDomain);
-  net::SwarmLinkConfig link;
-  link.name = name;
-  link.listen = listen;
-  link.partition = net::swarm_partition(options.swarm);
+  link_config_.name = name;
+  link_config_.listen = listen;
+  link_config_.partition = net::swarm_partition(options.swarm);
   if (!options.keys.empty()) {
     secured_ = true;
     const int signed_for = security::secured_domain_id(options.keys);
@@ -57,15 +89,43 @@ SwarmNet::SwarmNet(const SwarmNetOptions& options, const std::string& name, bool
       throw ConfigError(fmt::format("--swarm-domain {} but the keys in {} are for domain {}", *options.swarm_domain,
                                     options.keys, signed_for));
     swarm_domain_ = signed_for;
-    security = security::security_config_xml(options.keys, name);
-    link.partition = "";  // the secured domain is the swarm's alone; permissions grant the default partition
+    security_xml_ = security::security_config_xml(options.keys, name);
+    link_config_.partition = "";  // the secured domain is the swarm's alone; permissions grant the default partition
   }
   if (swarm_domain_ == ros_domain_of(options.ros_domain) && secured_)
     throw ConfigError(fmt::format("the secured swarm domain {} is also the ROS 2 domain: give --ros-domain another",
                                   swarm_domain_));
-  swarm_ = std::make_unique<net::Participant>(participant(swarm_domain_, options.interface, security));
-  link_ = std::make_unique<net::DdsSwarmLink>(*swarm_, link);
+  open_swarm();
+  link_ = std::make_unique<StableLink>(*this);
 }
+
+SwarmNet::~SwarmNet() = default;
+
+void SwarmNet::open_swarm() {
+  dds_link_.reset();
+  swarm_.reset();
+  swarm_ = std::make_unique<net::Participant>(participant(swarm_domain_, options_.interface, security_xml_));
+  dds_link_ = std::make_unique<net::DdsSwarmLink>(*swarm_, link_config_);
+  if (!secured_) return;
+  if (!watch_) watch_ = std::make_unique<Watch>();
+  watch_->probe = std::make_unique<security::DiscoveryProbe>(swarm_->handle(), dds_link_->writers(), dds_link_->readers());
+}
+
+protocol::SwarmLink& SwarmNet::link() { return *link_; }
+
+bool SwarmNet::maintain() {
+  if (!watch_ || !watch_->probe || !security::handshake_stuck(*watch_->probe, watch_->watchdog)) return false;
+  spdlog::warn("{}: a peer stays unmatched after its security handshake (Cyclone 0.10.2, cyclonedds #1895): "
+               "recreating the swarm participant",
+               name_);
+  std::unique_lock lock(link_->mutex);
+  watch_->probe.reset();
+  open_swarm();
+  watch_->watchdog.recreated(security::HandshakeWatchdog::Clock::now());
+  return true;
+}
+
+std::size_t SwarmNet::recreations() const { return watch_ ? watch_->watchdog.recreations() : 0; }
 
 net::Participant& SwarmNet::ros() {
   if (!ros_) {

@@ -31,18 +31,37 @@ class SwarmNet {
  public:
   // `name`: this robot's (or tool's) identity; `listen`: read an inbox and heartbeats.
   SwarmNet(const SwarmNetOptions& options, const std::string& name, bool listen = true);
+  ~SwarmNet();
   net::Participant& ros();  // made on first use
-  protocol::SwarmLink& link() { return *link_; }
-  net::Participant& swarm_participant() { return *swarm_; }
+  // Stays valid across recreations of the swarm participant (maintain()).
+  protocol::SwarmLink& link();
   bool secured() const { return secured_; }
   int swarm_domain() const { return swarm_domain_; }
 
+  // Works around Cyclone 0.10.2's lost security handshakes (cyclonedds
+  // #1895, docs/security.md): call every second or so; when a peer has been
+  // alive in discovery but never matched for a while, the swarm participant
+  // is recreated with all its endpoints (a fresh handshake with everyone).
+  // Returns whether it did. Does nothing on an unsecured swarm.
+  bool maintain();
+  std::size_t recreations() const;
+
  private:
+  class StableLink;
+  void open_swarm();
+
   SwarmNetOptions options_;
+  std::string name_;
+  bool listen_ = true;
   bool secured_ = false;
   int swarm_domain_ = 0;
+  std::string security_xml_;
+  net::SwarmLinkConfig link_config_;
   std::unique_ptr<net::Participant> swarm_, ros_;
-  std::unique_ptr<net::DdsSwarmLink> link_;
+  std::unique_ptr<net::DdsSwarmLink> dds_link_;
+  std::unique_ptr<StableLink> link_;
+  struct Watch;
+  std::unique_ptr<Watch> watch_;
 };
 
 }  // namespace dsswarm

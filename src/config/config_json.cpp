@@ -170,7 +170,8 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"exchange_timeout", DSS_SWARM_FIELD(double, exchange_timeout)},
         {"chunk_bytes", DSS_SWARM_FIELD(std::size_t, chunk_bytes)},
         {"max_open_encounters", DSS_SWARM_FIELD(std::size_t, max_open_encounters)},
-        {"max_pending_confirmations", DSS_SWARM_FIELD(std::size_t, max_pending_confirmations)}}},
+        {"max_pending_confirmations", DSS_SWARM_FIELD(std::size_t, max_pending_confirmations)},
+        {"max_transfer_bytes", DSS_SWARM_FIELD(std::size_t, max_transfer_bytes)}}},
   };
   return table;
 }

@@ -108,4 +108,11 @@ std::vector<std::vector<std::uint8_t>> DdsSwarmLink::receive(std::chrono::millis
 
 void DdsSwarmLink::wake() { dds_set_guardcondition(guard_.get(), true); }
 
+std::vector<dds_entity_t> DdsSwarmLink::readers() const {
+  std::vector<dds_entity_t> out;
+  if (inbox_reader_) out.push_back(inbox_reader_->handle());
+  if (heartbeat_reader_) out.push_back(heartbeat_reader_->handle());
+  return out;
+}
+
 }  // namespace dsswarm::net

@@ -48,6 +48,11 @@ class DdsSwarmLink : public protocol::SwarmLink {
   std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override;
   void wake() override;
 
+  // The endpoints every peer of the swarm matches (the broadcast topic's, and
+  // our inbox), for watching whether peers' security handshakes succeeded.
+  std::vector<dds_entity_t> writers() const { return {heartbeat_writer_.handle()}; }
+  std::vector<dds_entity_t> readers() const;
+
  private:
   struct InboxWriter;
   InboxWriter& writer_for(const std::string& recipient);

@@ -256,6 +256,12 @@ void EncounterEngine::on_chunk(const std::string& peer, const Chunk& chunk, std:
   if (it == open_.end()) return;  // abandoned, or never ours
   Exchange& x = *it->second;
   x.outcome.bytes_received += bytes;
+  if (buffered_bytes() + chunk.data.size() > config_.max_transfer_bytes ||
+      chunk.total_bytes > config_.max_transfer_bytes) {
+    finish(it->first, EncounterOutcome::End::abandoned,
+           fmt::format("snapshot transfers would hold more than {} MiB", config_.max_transfer_bytes >> 20), now);
+    return;
+  }
   try {
     if (!x.incoming.add(chunk)) return;
   } catch (const ProtocolError& e) {

@@ -213,6 +213,32 @@ TEST(EncounterEngine, APeerThatVanishesMidTransferIsDroppedAndItsPartialSnapshot
   EXPECT_EQ(p.a.merges, 0);  // nothing half-received reached the map
 }
 
+TEST(EncounterEngine, TransfersBeyondTheMemoryBoundAreAbandoned) {
+  SwarmConfig config = unconfirmed();
+  config.max_transfer_bytes = std::size_t{1} << 20;
+  Pair p(config);
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  // b claims a transfer far larger than a may hold: a gives up before buffering it.
+  p.pump(0.0, [&](const Outgoing& out) {
+    Message m = decode(out.bytes);
+    if (out.recipient != "a" || !std::holds_alternative<Chunk>(m.body)) return true;
+    return false;
+  });
+  ASSERT_EQ(p.ea.open_encounters(), 1u);  // waiting for b's snapshot
+  Chunk huge{1, 0, 4, std::uint64_t{64} << 20, 0, std::vector<std::uint8_t>(1000, 1)};
+  Message m;
+  m.header = {"b", "a", 1, 1000};
+  m.body = huge;
+  p.ea.receive(m, 1100, 0.0);
+  EXPECT_EQ(p.ea.open_encounters(), 0u);
+  EXPECT_EQ(p.ea.buffered_bytes(), 0u);
+  const auto o = p.ea.take_outcomes();
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_NE(o[0].reason.find("more than 1 MiB"), std::string::npos) << o[0].reason;
+  EXPECT_EQ(p.a.merges, 0);
+}
+
 TEST(EncounterEngine, OpenEncountersAreBounded) {
   SwarmConfig config = unconfirmed();
   config.max_open_encounters = 2;
