@@ -215,20 +215,26 @@ void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double 
   engine_->receive(m, bytes, t);
 }
 
-void AgentRuntime::on_proximity(const protocol::Proximity& p, double t) {
-  if (p.a != options_.name && p.b != options_.name) return;
+bool AgentRuntime::arm_unless_now(const protocol::Proximity& p) {
+  if (p.a != options_.name && p.b != options_.name) return true;
   const bool am_a = p.a == options_.name;
-  const std::string& peer = am_a ? p.b : p.a;
   const double stamp = am_a ? p.a_stamp : p.b_stamp;
-  if (std::isnan(stamp)) {
-    start_encounter(peer, p.event, t);
-    return;
-  }
+  if (std::isnan(stamp)) return false;
   std::lock_guard tl(trigger_mutex_);
-  fire(triggers_.arm({peer, p.event, stamp, SteadyClock::now(), false}));
+  fire(triggers_.arm({am_a ? p.b : p.a, p.event, stamp, SteadyClock::now(), false}));
+  return true;
+}
+
+void AgentRuntime::on_proximity(const protocol::Proximity& p, double t) {
+  if (!arm_unless_now(p)) start_encounter(p.a == options_.name ? p.b : p.a, p.event, t);
 }
 
 void AgentRuntime::raise_proximity(const protocol::Proximity& p) {
+  // A stamped event only arms a trigger: it must not wait for the engine,
+  // which the swarm thread holds while it places a peer's scan (seconds): the
+  // scan the event names would pass meanwhile and the robot join late, from
+  // another view than the in-process swarm's.
+  if (arm_unless_now(p)) return;
   std::lock_guard lock(engine_mutex_);
   on_proximity(p, swarm_now());
 }

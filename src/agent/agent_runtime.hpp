@@ -95,6 +95,8 @@ class AgentRuntime {
   protocol::AgentStatus status(double now) const;
   void handle(const protocol::Message& m, std::size_t bytes, double now);
   void on_proximity(const protocol::Proximity& p, double now);
+  // Arms a stamped event's trigger; false when the event means "now" for this robot.
+  bool arm_unless_now(const protocol::Proximity& p);
   void start_encounter(const std::string& peer, std::uint64_t id, double now);
   void after_scan(const LaserScan& scan, const SlamStep& step);
   void fire(std::vector<Trigger> due);

@@ -37,10 +37,17 @@ ProximityPlayer::ProximityPlayer(std::vector<TimedProximity> events, double rate
                                  std::optional<std::chrono::system_clock::time_point> start_at, Raise raise) {
   if (!(rate > 0.0) || !(lead >= 0.0)) throw std::invalid_argument("ProximityPlayer: rate > 0 and lead >= 0");
   const auto start = steady_start(start_at);
-  thread_ = std::thread([this, events = std::move(events), rate, lead, start, raise = std::move(raise)] {
+  const auto begun = std::chrono::steady_clock::now();
+  thread_ = std::thread([this, events = std::move(events), rate, lead, start, begun, raise = std::move(raise)] {
+    auto at = [&](double seconds) {
+      return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+    };
     for (const TimedProximity& e : events) {
-      const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(std::max(0.0, e.time / rate - lead)));
+      if (at(e.time / rate + lead) < begun) {  // over before we started (a robot restarted mid-run)
+        ++skipped_;
+        continue;
+      }
+      const auto due = at(std::max(0.0, e.time / rate - lead));
       while (!stop_ && std::chrono::steady_clock::now() < due) std::this_thread::sleep_for(std::chrono::milliseconds(10));
       if (stop_) break;
       raise(e.event);

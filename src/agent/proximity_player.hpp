@@ -2,7 +2,10 @@
 // Proximity events played on time (`dsswarm proximity`, and `agent --sim`,
 // whose simulated proximity sensor raises them): each is handed to `raise`
 // `lead` seconds before its time on the session clock (× 1/rate), early
-// enough for a robot to arm it before the scan it names.
+// enough for a robot to arm it before the scan it names. Events whose time
+// had passed by more than `lead` when the player started are not raised:
+// they are over (a robot restarted in the middle of a run would otherwise
+// open every encounter of the run's past at once).
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -36,10 +39,12 @@ class ProximityPlayer {
                   std::optional<std::chrono::system_clock::time_point> start_at, Raise raise);
   ~ProximityPlayer();  // stops early if need be
   bool done() const { return done_.load(); }
+  std::size_t skipped() const { return skipped_.load(); }  // events over before the start
   void wait();         // until every event is raised
 
  private:
   std::atomic<bool> stop_{false}, done_{false};
+  std::atomic<std::size_t> skipped_{0};
   std::thread thread_;
 };
 
