@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <istream>
 #include <map>
 #include <set>
 #include <string>
@@ -72,11 +73,9 @@ bool parse_fields(const char* p, std::size_t n, Fields& fields) {
 
 class StructureCheck {
  public:
-  explicit StructureCheck(std::string path) : path_(std::move(path)) {}
+  StructureCheck(std::istream& in, std::string path) : path_(std::move(path)), in_(in) {}
 
   void run() {
-    in_.open(path_, std::ios::binary);
-    if (!in_) throw InputError(path_ + ": cannot open file");
     in_.seekg(0, std::ios::end);
     file_size_ = static_cast<std::uint64_t>(in_.tellg());
     in_.seekg(0);
@@ -343,7 +342,7 @@ class StructureCheck {
   }
 
   std::string path_;
-  std::ifstream in_;
+  std::istream& in_;
   std::uint64_t file_size_ = 0;
   std::vector<Record> records_;
   std::uint64_t index_pos_ = 0;
@@ -362,6 +361,12 @@ class StructureCheck {
 
 }  // namespace
 
-void check_bag_structure(const std::string& path) { StructureCheck(path).run(); }
+void check_bag_structure(std::istream& in, const std::string& name) { StructureCheck(in, name).run(); }
+
+void check_bag_structure(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file");
+  check_bag_structure(in, path);
+}
 
 }  // namespace dsswarm::rosbag_raw

@@ -22,6 +22,7 @@
 
 #include "common/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/rosbag/bag_structure.hpp"
 #include "io/rosbag/rosbag_test_writer.hpp"
 
 namespace dsswarm {
@@ -483,6 +484,19 @@ TEST(RosbagRealData, TruncatedRealBagIsAnInputError) {
   write_file_atomically(cut, std::string_view(bytes).substr(0, 100'000));
   const std::string message = input_error_of(cut);
   EXPECT_NE(message.find("mit-csail-100k.bag"), std::string::npos) << message;
+}
+
+TEST(BagStructure, ChecksABagInMemoryNamingItsSource) {
+  const std::string bytes = read_bytes(write_bag("in_memory", small_spec()));
+  std::istringstream whole(bytes, std::ios::binary);
+  EXPECT_NO_THROW(rosbag_raw::check_bag_structure(whole, "memory.bag"));
+  std::istringstream cut(bytes.substr(0, bytes.size() - 10), std::ios::binary);
+  try {
+    rosbag_raw::check_bag_structure(cut, "memory.bag");
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory.bag: ", 0), 0u) << e.what();
+  }
 }
 
 }  // namespace
