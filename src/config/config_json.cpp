@@ -174,26 +174,28 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
 #undef DSS_FIELD
 #undef DSS_SWARM_FIELD
 
-void load_json_file(const std::filesystem::path& path, json& j) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("cannot open config file " + path.string());
+// `input` is a stream or a string; `source` names it in errors.
+template <typename Input, typename Config>
+void parse_and_apply(Input&& input, const std::string& source, Config& config) {
+  json j;
   try {
-    j = json::parse(in);
+    j = json::parse(std::forward<Input>(input));
   } catch (const json::parse_error& e) {
-    throw ConfigError(path.string() + ": not valid JSON (" + e.what() + ")");
+    throw ConfigError(source + ": not valid JSON (" + e.what() + ")");
+  }
+  apply_json(j, config, source);
+  try {
+    config.validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError(source + ": " + e.what());
   }
 }
 
 template <typename Config>
 void load(const std::filesystem::path& path, Config& config) {
-  json j;
-  load_json_file(path, j);
-  apply_json(j, config, path.string());
-  try {
-    config.validate();
-  } catch (const ConfigError& e) {
-    throw ConfigError(path.string() + ": " + e.what());
-  }
+  std::ifstream in(path);
+  if (!in) throw ConfigError("cannot open config file " + path.string());
+  parse_and_apply(in, path.string(), config);
 }
 
 }  // namespace
@@ -243,5 +245,9 @@ void apply_json(const json& j, SlamConfig& config, const std::string& source) {
 void load_config(const std::filesystem::path& path, SwarmConfig& config) { load(path, config); }
 
 void load_slam_config(const std::filesystem::path& path, SlamConfig& config) { load(path, config); }
+
+void parse_config(std::string_view text, const std::string& source, SwarmConfig& config) {
+  parse_and_apply(text, source, config);
+}
 
 }  // namespace dsswarm

@@ -107,5 +107,20 @@ TEST(SlamConfigJson, FileWithOutOfRangeValueFailsValidation) {
   }
 }
 
+TEST(SwarmConfigJson, ParsesTextInMemoryAsItLoadsFiles) {
+  SwarmConfig c;
+  parse_config(R"({"map": {"levels": 2}, "swarm": {"confirm": false}})", "inline.json", c);
+  EXPECT_EQ(c.slam.map.levels, 2);
+  EXPECT_FALSE(c.confirm);
+  for (const char* bad : {"{ not json", R"({"map": {"levels": 0}})", R"({"mapp": {}})"}) {
+    try {
+      parse_config(bad, "inline.json", c);
+      ADD_FAILURE() << "expected ConfigError for " << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("inline.json: ", 0), 0u) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm
