@@ -180,7 +180,7 @@ void parse_and_apply(Input&& input, const std::string& source, Config& config) {
   json j;
   try {
     j = json::parse(std::forward<Input>(input));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     throw ConfigError(source + ": not valid JSON (" + e.what() + ")");
   }
   apply_json(j, config, source);

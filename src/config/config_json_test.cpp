@@ -122,5 +122,23 @@ TEST(SwarmConfigJson, ParsesTextInMemoryAsItLoadsFiles) {
   }
 }
 
+// Found by fuzzing (fuzz/config.cpp): nlohmann's parser reports a number too
+// large for a double as out_of_range, not parse_error, which escaped as a
+// plain std::exception.
+TEST(SwarmConfigJson, NumberTooLargeForADoubleIsAConfigError) {
+  SwarmConfig c;
+  try {
+    parse_config(R"({"swarm": {"confirm_xy": 1e400}})", "huge.json", c);
+    ADD_FAILURE() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.json: not valid JSON"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e400"), std::string::npos) << e.what();
+  }
+  const std::filesystem::path p = std::filesystem::path(DSSWARM_TEST_TMP) / "huge.json";
+  std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p) << R"({"map": {"resolution": -1e400}})";
+  EXPECT_THROW(load_config(p, c), ConfigError);
+}
+
 }  // namespace
 }  // namespace dsswarm
