@@ -7,6 +7,7 @@ packages=(
   libpng-dev zlib1g-dev libzstd-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
+  clang libclang-rt-14-dev llvm  # sanitizer build + libFuzzer; llvm-symbolizer for readable reports
 )
 missing=()
 for p in "${packages[@]}"; do
