@@ -71,6 +71,14 @@ bool parse_fields(const char* p, std::size_t n, Fields& fields) {
   return true;
 }
 
+// For error messages: control and non-ASCII bytes as '?'.
+std::string printable(std::string text) {
+  for (char& c : text) {
+    if (c < 0x20 || c > 0x7e) c = '?';
+  }
+  return text;
+}
+
 class StructureCheck {
  public:
   StructureCheck(std::istream& in, std::string path) : path_(std::move(path)), in_(in) {}
@@ -81,7 +89,15 @@ class StructureCheck {
     in_.seekg(0);
     std::string magic(kMagicSize, '\0');
     if (file_size_ < kMagicSize || !read_exact(0, magic.data(), kMagicSize) || magic != kMagic) {
-      if (magic.rfind("#ROSBAG V", 0) == 0) return;  // another version: rosbag_storage decides
+      // rosbag_storage would read any other version line ("#ROSBAG V1.2", but
+      // also "#ROSBAG V2. 0" as 2.0) without these checks.
+      if (magic.rfind("#ROSBAG V", 0) == 0) {
+        std::string line(static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, 40)), '\0');
+        read_exact(0, line.data(), line.size());
+        throw InputError(path_ + ": ROS1 bag format \"" + printable(line.substr(0, line.find('\n'))) +
+                         "\" is not supported (only \"#ROSBAG V2.0\"; rewrite the bag with a current "
+                         "rosbag, e.g. `rosbag filter old.bag new.bag True`)");
+      }
       throw InputError(path_ + ": not a ROS1 bag (the file does not start with \"#ROSBAG V2.0\")");
     }
     for (std::uint64_t pos = kMagicSize; pos < file_size_;) pos = top_level_record(pos);

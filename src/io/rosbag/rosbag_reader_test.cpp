@@ -499,5 +499,23 @@ TEST(BagStructure, ChecksABagInMemoryNamingItsSource) {
   }
 }
 
+// Found by fuzzing (fuzz/rosbag_read.cpp): rosbag_storage reads the version
+// line with sscanf, so "#ROSBAG V2.   0" is a 2.0 bag to it; the structural
+// check let every line but "#ROSBAG V2.0" through unchecked, and rosbag_storage
+// then allocated the 3.2 GB the next length field asked for.
+TEST(RosbagReader, OtherVersionLinesAreRefusedNotReadUnchecked) {
+  const fs::path dir = fresh_dir("rosbag_versions");
+  const std::string lengths("\x45\x20\x20\xbf\x10\x00\x00\x00", 8);
+  for (const std::string& line : {std::string("#ROSBAG V2.   0\n"), std::string("#ROSBAG V1.2\n")}) {
+    const fs::path path = dir / "version.bag";
+    write_file_atomically(path, line + lengths + std::string(64, ' '));
+    const std::string message = input_error_of(path);
+    EXPECT_NE(message.find(path.string() + ": ROS1 bag format \"" + line.substr(0, line.size() - 1) +
+                           "\" is not supported"),
+              std::string::npos)
+        << message;
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm
