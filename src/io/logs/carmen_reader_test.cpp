@@ -538,7 +538,7 @@ TEST(CarmenReader, ParsesTextInMemoryAsItReadsFiles) {
     parse_carmen("\nFLASER 3 1 2x 3 0 0 0 0 0 0 2.0 host 0\n", "memory.log");
     ADD_FAILURE() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("memory.log:2: FLASER: field 'range 2 of 3'"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("memory.log:2: FLASER", 0), 0u) << e.what();  // file:line of the text
   }
 }
 
