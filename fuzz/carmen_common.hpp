@@ -39,7 +39,8 @@ inline std::vector<std::pair<std::string, std::string>> carmen_seed_logs(const S
   const std::string head = seeds.shared_text("carmen/intel.log.gz", 3000);
   std::string intel;
   for (std::string_view rest = head; !rest.empty();) {
-    const std::string_view line = rest.substr(0, rest.find('\n') + 1);
+    const std::size_t newline = rest.find('\n');
+    const std::string_view line = rest.substr(0, newline == std::string_view::npos ? rest.size() : newline + 1);
     rest.remove_prefix(line.size());
     if (line.front() != '#' || line.starts_with("# PARAM")) intel += line;
   }

@@ -274,11 +274,12 @@ TEST(SwarmScenario, TextInMemoryReadsAsTheFileDoes) {
     EXPECT_EQ(from_text.streams[i].clock, from_file.streams[i].clock) << i;
   }
   EXPECT_EQ(from_text.warnings, from_file.warnings);
+  const fs::path typed = file.parent_path() / "typed.yaml";
   try {
-    parse_swarm_scenario("agents: [", file.parent_path() / "typed.yaml");
+    parse_swarm_scenario("agents: [", typed);
     ADD_FAILURE() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("typed.yaml: line 1:", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(typed.string() + ": line 1:", 0), 0u) << e.what();
   }
 }
 
