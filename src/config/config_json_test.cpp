@@ -140,5 +140,32 @@ TEST(SwarmConfigJson, NumberTooLargeForADoubleIsAConfigError) {
   EXPECT_THROW(load_config(p, c), ConfigError);
 }
 
+// Found by fuzzing (fuzz/config.cpp): 9.1e92 for an int field was converted
+// with undefined behaviour; 2.5, 4294967298 and true were silently read as 2, 2, 1.
+TEST(SwarmConfigJson, WholeNumberFieldsTakeOnlyWholeNumbersInRange) {
+  SwarmConfig c;
+  parse_config(R"({"map": {"levels": 2.0}, "slam": {"seed": 18446744073709551615}})", "ok.json", c);
+  EXPECT_EQ(c.slam.map.levels, 2);
+  EXPECT_EQ(c.slam.seed, 18446744073709551615ULL);
+  for (const char* value : {"9.1e92", "2.5", "4294967298", "-2147483649", "true", "\"2\""}) {
+    const std::string text = std::string(R"({"map": {"levels": )") + value + "}}";
+    try {
+      parse_config(text, "bad.json", c);
+      ADD_FAILURE() << "expected ConfigError for " << value;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.json: 'map.levels' must be a whole number"), std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    parse_config(R"({"slam": {"seed": -1}})", "bad.json", c);
+    ADD_FAILURE() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("'slam.seed' must be a whole number from 0 to 18446744073709551615"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm
