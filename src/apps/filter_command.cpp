@@ -189,7 +189,7 @@ void add_filter_command(CLI::App& app) {
   auto args = std::make_shared<FilterArgs>();
   ScanFilterConfig& c = args->config;
   CLI::App* cmd = app.add_subcommand("filter", "Drop redundant laser scans (histogram correlation filter)");
-  cmd->add_option("log", args->log, "Log file (CARMEN or ROS1 bag)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("log", args->log, "Log (CARMEN, ROS1 bag or ROS 2 bag)")->required()->check(CLI::ExistingPath);
   cmd->add_option("--out", args->out, "Filtered log to write (CARMEN, the kept scans)")->required();
   cmd->add_option("--decisions", args->decisions,
                   "CSV with one row per scan: index,timestamp,kept,min_correlation,product,window,reason");

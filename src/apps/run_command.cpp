@@ -96,8 +96,10 @@ void run(const RunArgs& a) {
 
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "Single-robot SLAM on a recorded log (CARMEN .log/.clf[.gz] or ROS1 .bag)");
-  cmd->add_option("log", args->log, "Log file")->required()->check(CLI::ExistingFile);
+  CLI::App* cmd = app.add_subcommand("run", "Single-robot SLAM on a recorded log (CARMEN .log/.clf[.gz], ROS1 .bag, ROS 2 bag)");
+  cmd->add_option("log", args->log, "Log: CARMEN file, ROS1 .bag, ROS 2 bag (folder, .db3 or .mcap)")
+      ->required()
+      ->check(CLI::ExistingPath);
   cmd->add_option("--out", args->out, "Output directory (created if needed)")->required();
   cmd->add_option("--scan-topic", args->scan_topic, "ROS bag: sensor_msgs/LaserScan topic")->capture_default_str();
   cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "slam/slam.hpp"
-#include "swarm/swarm_session.hpp"
+#include "swarm/swarm_config.hpp"
 
 namespace dsswarm {
 

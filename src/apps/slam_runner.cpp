@@ -16,12 +16,6 @@ namespace dsswarm {
 
 using Clock = std::chrono::steady_clock;
 
-std::size_t peak_rss_bytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
-}
-
 RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
   RunResult result;
   result.trajectory.reserve(log.scans.size());

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/process_usage.hpp"
 #include "io/trajectory/tum.hpp"
 #include "sensor/laser_scan.hpp"
 #include "slam/slam.hpp"
@@ -51,7 +52,5 @@ struct ContinuedMap {
 // it was built with: `config.map.evidence` is set to the file's.
 ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config);
 
-// Peak resident set size of this process, bytes.
-std::size_t peak_rss_bytes();
 
 }  // namespace dsswarm

@@ -67,7 +67,7 @@ void run_demo(const DemoArgs& a) {
   for (const ProximityEvent& e : near)
     events.push_back({e.time, static_cast<std::size_t>(e.a), static_cast<std::size_t>(e.b)});
 
-  SwarmSession session(std::move(streams), std::move(events), config, dsmap_transport());
+  SwarmSession session(std::move(streams), std::move(events), config);
   const double seconds = run_swarm_session(session, "demo");
   const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds, &truth);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,
@@ -102,7 +102,7 @@ void run_scenario(SwarmArgs a) {
   for (const AgentStream& s : scenario.streams) scans += s.scans.size();
   fmt::print("scenario {}: {} agents, {} scans, {} scripted encounters\n", scenario.name, scenario.streams.size(),
              scans, scenario.events.size());
-  SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config, dsmap_transport());
+  SwarmSession session(std::move(scenario.streams), std::move(scenario.events), config);
   const double seconds = run_swarm_session(session, scenario.name);
   const nlohmann::json stats = write_swarm_outputs(a.out, session, seconds);
   fmt::print("{} scans in {:.2f} s ({:.0f} scans/s); outputs in {}\n", stats["scans"].get<std::size_t>(), seconds,

@@ -116,14 +116,6 @@ void draw_swarm_picture(const std::filesystem::path& path, const SwarmSession& s
 
 }  // namespace
 
-SnapshotTransport dsmap_transport() {
-  return [](const MapSnapshot& snapshot, std::size_t& bytes) {
-    const std::vector<std::uint8_t> wire = encode_dsmap(snapshot);
-    bytes += wire.size();
-    return decode_dsmap(wire, "snapshot from " + snapshot.sender);
-  };
-}
-
 double run_swarm_session(SwarmSession& session, const std::string& label) {
   const auto start = Clock::now();
   auto next_report = start + std::chrono::seconds(2);
@@ -221,6 +213,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   std::size_t wrong = 0;
   for (const EncounterRecord& r : s.encounters()) {
     nlohmann::json e;
+    e["id"] = r.id;
     e["time"] = r.time;
     e["agents"] = {r.a, r.b};
     e["log_times"] = {r.a_log_time, r.b_log_time};
@@ -234,6 +227,7 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
     e["match_ms"] = r.match_ms;
     e["merge_ms"] = r.merge_ms;
     e["bytes"] = r.bytes;
+    e["snapshot_bytes"] = r.snapshot_bytes;
     e["disagreement"] = {r.estimate.disagreement_xy, r.estimate.disagreement_theta * kRadToDeg};
     e["wide_moved"] = {r.estimate.wide_moved_xy, r.estimate.wide_moved_theta * kRadToDeg};
     // Each side's placement of the other robot in its own map.

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/trajectory/tum.hpp"
-#include "swarm/swarm_session.hpp"
+#include "protocol/swarm_session.hpp"
 
 namespace dsswarm {
 
@@ -25,10 +25,6 @@ namespace dsswarm {
 struct SwarmTruth {
   std::vector<Trajectory> world_poses;
 };
-
-// Serializes snapshots as .dsmap bytes and back, as the network would carry
-// them (and counts the bytes).
-SnapshotTransport dsmap_transport();
 
 // Plays the session; returns the wall-clock seconds it took.
 double run_swarm_session(SwarmSession& session, const std::string& label);

@@ -10,6 +10,7 @@
 #include <set>
 #include <utility>
 
+#include "common/agent_name.hpp"
 #include "common/errors.hpp"
 
 namespace dsswarm {
@@ -93,11 +94,13 @@ class ScenarioFile {
   }
 
   // An existing file named relative to the scenario's folder.
-  fs::path existing_file(const YAML::Node& node, const std::string& context, const std::string& key) const {
+  // `folder_ok`: a folder will do (a ROS 2 bag is one).
+  fs::path existing_file(const YAML::Node& node, const std::string& context, const std::string& key,
+                         bool folder_ok = false) const {
     const fs::path given = text(node, context, key);
     const fs::path resolved = given.is_absolute() ? given : fs::path(file_).parent_path() / given;
     std::error_code ec;
-    if (!fs::is_regular_file(resolved, ec)) {
+    if (!fs::is_regular_file(resolved, ec) && !(folder_ok && fs::is_directory(resolved, ec))) {
       fail(node, context, key, fmt::format("file not found: {}", resolved.string()));
     }
     return resolved.lexically_normal();
@@ -131,14 +134,6 @@ YAML::Node load_root(const fs::path& yaml, Load load) {
 }
 
 // Agent names become folder names in the swarm command's output.
-bool is_valid_agent_name(const std::string& name) {
-  if (name.empty() || name == "." || name == "..") return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-           c == '.';
-  });
-}
-
 struct AgentSpec {
   YAML::Node node;
   std::string context;  // "agents[i] (name):"
@@ -266,7 +261,7 @@ LoadedAgents load_agents(const ScenarioFile& f, const YAML::Node& root, const Lo
       if (other.name == a.name) f.fail(node["name"], a.context, "name", fmt::format("'{}' is already the name of {}", a.name, other.context.substr(0, other.context.size() - 1)));
     }
     if (!node["log"]) f.fail_missing(node, a.context, "log", "the log file this agent plays");
-    a.log = f.existing_file(node["log"], a.context, "log");
+    a.log = f.existing_file(node["log"], a.context, "log", true);
     if (const YAML::Node d = node["direction"]) {
       const std::string dir = f.text(d, a.context, "direction");
       if (dir != "forward" && dir != "backward") {

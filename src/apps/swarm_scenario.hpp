@@ -45,7 +45,7 @@
 #include <vector>
 
 #include "io/logs/log_reader.hpp"
-#include "swarm/swarm_session.hpp"
+#include "protocol/swarm_session.hpp"
 
 namespace dsswarm {
 

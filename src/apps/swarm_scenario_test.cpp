@@ -229,7 +229,7 @@ TEST(SwarmScenario, MissingScenarioFileIsAnInputError) {
 // each encounter both robots have just played the scans its log_times name
 // (the picking script aligned the start times to make that exact).
 TEST(SwarmScenarioRealData, ShippedScenariosLoadWithEncountersWhereTheySay) {
-  const fs::path scenarios = fs::path(__FILE__).parent_path() / ".." / ".." / "scenarios";
+  const fs::path scenarios = fs::path(DSSWARM_SOURCE_DIR) / "scenarios";
   const fs::path data(DSSWARM_SHARED_DATA);
   if (!fs::exists(data / "carmen" / "intel.log.gz")) GTEST_SKIP() << "real data not found at " << data;
   std::vector<fs::path> files;

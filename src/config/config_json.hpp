@@ -13,7 +13,7 @@
 #include <string_view>
 
 #include "slam/slam.hpp"
-#include "swarm/swarm_session.hpp"
+#include "swarm/swarm_config.hpp"
 
 namespace dsswarm {
 

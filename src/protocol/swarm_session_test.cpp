@@ -1,4 +1,4 @@
-#include "swarm/swarm_session.hpp"
+#include "protocol/swarm_session.hpp"
 
 #include <gtest/gtest.h>
 

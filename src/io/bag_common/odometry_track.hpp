@@ -7,7 +7,7 @@
 
 namespace dsswarm {
 
-struct StampedPose {
+struct OdometrySample {
   double stamp = 0.0;
   Pose2 pose;
 };
@@ -15,7 +15,7 @@ struct StampedPose {
 class OdometryTrack {
  public:
   // `poses` must be sorted by non-decreasing stamp.
-  explicit OdometryTrack(std::vector<StampedPose> poses);
+  explicit OdometryTrack(std::vector<OdometrySample> poses);
 
   bool empty() const { return poses_.empty(); }
   double first_stamp() const { return poses_.front().stamp; }
@@ -27,7 +27,7 @@ class OdometryTrack {
   std::optional<Pose2> at(double t, double max_extrapolation) const;
 
  private:
-  std::vector<StampedPose> poses_;
+  std::vector<OdometrySample> poses_;
 };
 
 }  // namespace dsswarm

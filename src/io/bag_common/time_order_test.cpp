@@ -1,11 +1,11 @@
-#include "io/rosbag/time_order.hpp"
+#include "io/bag_common/time_order.hpp"
 
 #include <gtest/gtest.h>
 
 #include <numbers>
 #include <vector>
 
-#include "io/rosbag/odometry_track.hpp"
+#include "io/bag_common/odometry_track.hpp"
 
 namespace dsswarm {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/rosbag/time_order.hpp"
+#include "io/bag_common/time_order.hpp"
 
 #include <algorithm>
 #include <cassert>
