@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/test_files.hpp"
+#include <sys/resource.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -514,6 +515,37 @@ TEST(RosbagReader, OtherVersionLinesAreRefusedNotReadUnchecked) {
                            "\" is not supported"),
               std::string::npos)
         << message;
+  }
+}
+
+// Peak resident memory of this process so far (each ctest case runs alone).
+std::size_t peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::size_t>(usage.ru_maxrss) / 1024;
+}
+
+// Found by fuzzing (fuzz/rosbag_structure.cpp): a chunk whose size field
+// claims almost 1 GB made the structural check allocate and clear that much
+// before comparing it with the bytes there, for any compression.
+TEST(BagStructure, AChunkClaimingMoreThanItHoldsCostsNoMemory) {
+  for (const auto compression : {TestBagSpec::Compression::None, TestBagSpec::Compression::Bz2}) {
+    TestBagSpec spec = small_spec();
+    spec.compression = compression;
+    const fs::path path = write_bag("huge_chunk", spec);
+    std::string bytes = read_bytes(path);
+    const std::size_t size_field = bytes.find("size=");  // the first chunk's header
+    ASSERT_NE(size_field, std::string::npos);
+    bytes.replace(size_field + 5, 4, le32_bytes(0x3ff00000));
+    write_file_atomically(path, bytes);
+    const std::size_t before = peak_rss_mb();
+    const std::string message = input_error_of(path);
+    EXPECT_NE(message.find(compression == TestBagSpec::Compression::None
+                               ? "uncompressed chunk whose size field disagrees with its length"
+                               : "its header says 1072693248"),
+              std::string::npos)
+        << message;
+    EXPECT_LT(peak_rss_mb() - before, 256u) << "MB more at the peak";
   }
 }
 
