@@ -50,6 +50,13 @@ inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
 std::filesystem::path scratch_file(const std::string& name, std::string_view bytes);
 const std::filesystem::path& scratch_dir();
 
+// Keeps a value computed from bytes a parser handed over, so that reading
+// them (where ASan checks their bounds) is not optimised away.
+inline void keep(std::size_t value) {
+  static volatile std::size_t sink = 0;
+  sink = sink + value;
+}
+
 // Reports a broken invariant and aborts (libFuzzer saves the input).
 [[noreturn]] void fail(std::string_view what);
 inline void check(bool ok, std::string_view what) {

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Builds and runs the libFuzzer targets of fuzz/ (one per parser: CARMEN text
-# and files, ROS1 bag structure and whole bags, .dsmap and its payload,
-# scenario YAML, config JSON, TUM, relations, PGM) under ASan + UBSan with
-# leak detection, then prints a table: target, executions, corpus size, crashes.
+# and files, ROS1 bag structure and whole bags, ROS 2 bags (MCAP, SQLite,
+# metadata.yaml, whole bags) and CDR messages, swarm network messages, .dsmap
+# and its payload, scenario YAML, config JSON, TUM, relations, PGM) under
+# ASan + UBSan with leak detection, then prints a table: target, executions,
+# corpus size, crashes.
 #
-#   scripts/fuzz.sh --smoke               every target for 15 s (CI: scripts/test.sh)
+#   scripts/fuzz.sh --smoke               every target for 12 s (CI: scripts/test.sh)
 #   scripts/fuzz.sh --runs 1000000        the long runs: 10^6 executions per target
 #   scripts/fuzz.sh --time 600 dsmap tum  the named targets for 10 minutes each
 #   scripts/fuzz.sh --make-corpus         regenerate fuzz/corpus/* and fuzz/dict/*
@@ -44,7 +46,7 @@ do_build=1
 targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --smoke) mode=run; seconds=15; smoke=1 ;;
+    --smoke) mode=run; seconds=12; smoke=1 ;;
     --time) mode=run; seconds="$2"; shift ;;
     --runs) mode=run; runs="$2"; shift ;;
     --make-corpus) mode=corpus ;;
