@@ -62,4 +62,9 @@ struct SwarmScenario {
 // Reads the scenario and every log it names (each distinct log once).
 SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogReadOptions& read = {});
 
+// The same for the scenario's text in memory; `yaml` stands for its path:
+// errors name it and relative paths are resolved against its folder.
+SwarmScenario parse_swarm_scenario(const std::string& text, const std::filesystem::path& yaml,
+                                   const LogReadOptions& read = {});
+
 }  // namespace dsswarm

@@ -573,4 +573,17 @@ SensorLog read_carmen(const std::filesystem::path& path, const CarmenOptions& op
   return parser.finish();
 }
 
+SensorLog parse_carmen(std::string_view text, const std::string& source_name, const CarmenOptions& options) {
+  CarmenParser parser(source_name, options);
+  std::size_t line_number = 0;
+  while (!text.empty()) {
+    const std::size_t newline = std::min(text.find('\n'), text.size());
+    std::string_view line = text.substr(0, newline);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    parser.parse_line(line, ++line_number);
+    text.remove_prefix(std::min(newline + 1, text.size()));
+  }
+  return parser.finish();
+}
+
 }  // namespace dsswarm

@@ -556,5 +556,33 @@ TEST(CarmenReaderRealData, ClassicClfMatchesConvertedLog) {
   }
 }
 
+TEST(CarmenReader, ParsesTextInMemoryAsItReadsFiles) {
+  std::string text = "# PARAM laser_range_max 12\r\n" + flaser(beams(3), 1.0) + odom(1.5) +
+                     flaser({"1", "inf", "3"}, 0.5, Pose2(0.5, 0.0, 0.1));
+  text.pop_back();  // the last line without its newline
+  const fs::path path = scratch_dir("in_memory") / "a.log";
+  write_plain(path, text);
+  const SensorLog from_file = read_carmen(path);
+  const SensorLog from_text = parse_carmen(text, path.string());
+  ASSERT_EQ(from_text.scans.size(), 2u);
+  ASSERT_EQ(from_text.scans.size(), from_file.scans.size());
+  for (std::size_t i = 0; i < from_text.scans.size(); ++i) {
+    EXPECT_EQ(from_text.scans[i].ranges, from_file.scans[i].ranges) << i;
+    EXPECT_EQ(from_text.scans[i].timestamp, from_file.scans[i].timestamp) << i;
+    EXPECT_EQ(from_text.scans[i].range_max, 12.0) << i;
+    ASSERT_TRUE(from_text.scans[i].odometry) << i;
+    EXPECT_EQ(from_text.scans[i].odometry->x, from_file.scans[i].odometry->x) << i;
+  }
+  EXPECT_EQ(from_text.warnings, from_file.warnings);
+  EXPECT_TRUE(has_warning(from_text, "1 of 2 scan timestamps run backwards")) << all_warnings(from_text);
+
+  try {
+    parse_carmen("\nFLASER 3 1 2x 3 0 0 0 0 0 0 2.0 host 0\n", "memory.log");
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory.log:2: FLASER", 0), 0u) << e.what();  // file:line of the text
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm
