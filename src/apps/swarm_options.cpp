@@ -77,7 +77,7 @@ struct SwarmNet::Watch {
 };
 
 SwarmNet::SwarmNet(const SwarmNetOptions& options, const std::string& name, bool listen)
-    : options_(options), name_(name), listen_(listen) {
+    : options_(options), name_(name) {
   swarm_domain_ = options.swarm_domain.value_or(kDefaultSwarmDomain);
   link_config_.name = name;
   link_config_.listen = listen;

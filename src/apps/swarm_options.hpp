@@ -52,7 +52,6 @@ class SwarmNet {
 
   SwarmNetOptions options_;
   std::string name_;
-  bool listen_ = true;
   bool secured_ = false;
   int swarm_domain_ = 0;
   std::string security_xml_;

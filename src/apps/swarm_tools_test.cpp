@@ -211,7 +211,7 @@ TEST_F(SwarmToolsTest, TriggerToAnAbsentRobotFailsAndBadNamesAreConfigErrors) {
 class FakeHeartbeats {
  public:
   FakeHeartbeats(net::Participant& p, std::chrono::milliseconds robot2_for) {
-    thread_ = std::jthread([this, &p, robot2_for](std::stop_token stop) {
+    thread_ = std::jthread([&p, robot2_for](std::stop_token stop) {
       net::DdsSwarmLink link1(p, link_config("robot1", false)), link2(p, link_config("robot2", false));
       protocol::MessageStamper stamp1("robot1", 11), stamp2("robot2", 22);
       const auto until2 = Clock::now() + robot2_for;
