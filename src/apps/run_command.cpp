@@ -29,6 +29,8 @@ struct RunArgs {
   std::string save_map;    // .dsmap written at the end (the robot's own map)
   std::string load_map;    // .dsmap to continue mapping in
   std::string start_pose;  // "x,y,theta" in the loaded map's frame
+  std::optional<std::size_t> max_scans;  // only the first N scans (benchmarks, profiling)
+  bool no_images = false;                // trajectory and stats only
   SlamOptions slam;
 };
 
@@ -69,6 +71,7 @@ void run(const RunArgs& a) {
     for (auto& s : log.scans) s.laser_offset = parse_offset(a.laser_offset);
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  if (a.max_scans && log.scans.size() > *a.max_scans) log.scans.resize(*a.max_scans);
 
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same
@@ -83,7 +86,7 @@ void run(const RunArgs& a) {
   const RunResult result = run_slam(log, *slam);
   nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
   if (!a.load_map.empty()) stats["load_map"] = a.load_map;
-  write_run_outputs(a.out, result, *slam, stats);
+  write_run_outputs(a.out, result, *slam, stats, nullptr, !a.no_images);
   if (!a.save_map.empty()) {
     const std::filesystem::path path(a.save_map);
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -116,6 +119,9 @@ void add_run_command(CLI::App& app) {
                   "With --load-map: robot pose at the first scan in the map's frame, x,y,theta (m, m, rad); "
                   "default: the first scan's odometry pose")
       ->needs(load);
+  cmd->add_option("--max-scans", args->max_scans, "Process only the first N scans of the log")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-images", args->no_images, "Write trajectory.tum and stats.json only (no map.pgm/.yaml/.png)");
   add_slam_options(*cmd, args->slam);
   cmd->callback([args] { run(*args); });
 }

@@ -68,9 +68,11 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
 }
 
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
-                       const nlohmann::json& stats, const Trajectory* ground_truth) {
+                       const nlohmann::json& stats, const Trajectory* ground_truth, bool images) {
   std::filesystem::create_directories(dir);
   write_tum(dir / "trajectory.tum", result.trajectory);
+  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+  if (!images) return;
   const GridRaster raster = slam.map().finest().to_raster();
   write_map_server(dir / "map.yaml", raster);
 
@@ -87,7 +89,6 @@ void write_run_outputs(const std::filesystem::path& dir, const RunResult& result
     if (!result.trajectory.empty()) draw_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 3);
     write_png(dir / "map.png", picture);
   }
-  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
 }
 
 MapSnapshot own_map_snapshot(const Slam& slam, const std::string& sender, std::uint64_t previous_version) {

@@ -29,10 +29,11 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label = 
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds);
 
 // Writes trajectory.tum, map.pgm + map.yaml (ROS map_server), map.png (map with
-// the trajectory, and `ground_truth` in another colour if given), stats.json.
-// Each file is written atomically; the directory is created if needed.
+// the trajectory, and `ground_truth` in another colour if given), stats.json;
+// without `images` only trajectory.tum and stats.json. Each file is written
+// atomically; the directory is created if needed.
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
-                       const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
+                       const nlohmann::json& stats, const Trajectory* ground_truth = nullptr, bool images = true);
 
 // The robot's own map as a one-layer snapshot (what `run --save-map` writes):
 // origin = sender, identity pose, hops 0, version = `previous_version` (the
