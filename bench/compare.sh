@@ -138,19 +138,17 @@ run_dsswarm() {  # SYSTEM DATASET [flags]
 
 run_mrpt() {  # SYSTEM DATASET
   local system=$1 dataset=$2
-  local name=$system-$dataset dir=$work/out/$1-$2 ini=$work/out/$1-$2.ini error="" rawlog every
+  local name=$system-$dataset dir=$work/out/$1-$2 ini=$work/out/$1-$2.ini error=""
   if [ "$system" = icp-slam ]; then
     mrpt_config "$icp_sample" "$ini" SHOW_PROGRESS_3D_REAL_TIME=0 SAVE_3D_SCENE=0 LOG_FREQUENCY=1000000 \
       "logOutput_dir=$dir"
-    rawlog=$work/$dataset.obs.rawlog every=2  # odometry entry, scan entry
   else
     mrpt_config "$rbpf_sample" "$ini" SHOW_PROGRESS_IN_WINDOW=0 SAVE_3D_SCENE=0 SAVE_MAP_IMAGES=0 \
       LOG_FREQUENCY=1000000 "verbosity_level=INFO" RANDOM_SEED=1 "logOutput_dir=$dir"
-    rawlog=$work/$dataset.sf.rawlog every=1
   fi
-  run_timed "$name" "$system" "$ini" "$rawlog" < /dev/null || error="$system failed (see $work/out/$name.log)"
+  run_timed "$name" "$system" "$ini" "$work/$dataset.rawlog" < /dev/null || error="$system failed (see $work/out/$name.log)"
   [ -n "$error" ] || python3 "$tools" mrpt-tum "$dir/log_estimated_path.txt" "$work/$dataset.stamps" \
-    "$dir/trajectory.tum" --every "$every" || error="no usable path in $dir/log_estimated_path.txt"
+    "$dir/trajectory.tum" || error="no usable path in $dir/log_estimated_path.txt"
   record "$system" "$dataset" "$dir/trajectory.tum" "$error"
 }
 
@@ -204,8 +202,8 @@ mrpt = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "mrpt-apps"], captur
 json.dump({"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"), "commit": commit,
            "cpu": cpu, "cores": os.cpu_count(), "load_start": load_start, "load_end": load_end, "mrpt": mrpt,
            "configs": {"dsswarm": "defaults, seed 1, `--no-images`", "dsswarm-filter": "the same with `--filter`",
-                       "icp-slam": f"`{os.path.basename(icp)}` (MRPT {mrpt}), observations-only rawlog",
-                       "rbpf-slam": f"`{os.path.basename(rbpf)}` (MRPT {mrpt}), RANDOM_SEED=1, actions/sensory-frames rawlog"}},
+                       "icp-slam": f"`{os.path.basename(icp)}` (MRPT {mrpt})",
+                       "rbpf-slam": f"`{os.path.basename(rbpf)}` (MRPT {mrpt}), RANDOM_SEED=1"}},
           open(path, "w"), indent=2)
 PY
 python3 "$tools" report "$work" "$out"

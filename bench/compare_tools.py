@@ -13,13 +13,10 @@ import sys
 
 def mrpt_path_to_tum(args):
     """MRPT's log_estimated_path.txt (`step x y yaw` for icp-slam; `step x y z
-    yaw pitch roll timestamp` for rbpf-slam) -> TUM, one pose per scan, the
-    scan's timestamp from the converter's .stamps file. The apps log one line
-    per rawlog entry: `--every 2` keeps the scan entries of an
-    observations-only rawlog (odometry entry, then scan entry)."""
+    yaw pitch roll timestamp` for rbpf-slam), one line per rawlog entry = per
+    scan -> TUM, the scan's timestamp from the converter's .stamps file."""
     stamps = [line.strip() for line in open(args.stamps) if line.strip()]
     rows = [line.split() for line in open(args.path) if line.strip() and not line.startswith("%")]
-    rows = rows[args.every - 1::args.every]
     if len(rows) != len(stamps):
         sys.exit(f"error: {args.path}: {len(rows)} scan steps, {args.stamps}: {len(stamps)} scans")
     with open(args.out, "w") as out:
@@ -208,7 +205,6 @@ def main():
     sub = parser.add_subparsers(required=True)
     p = sub.add_parser("mrpt-tum")
     p.add_argument("path"), p.add_argument("stamps"), p.add_argument("out")
-    p.add_argument("--every", type=int, default=1)
     p.set_defaults(run=mrpt_path_to_tum)
     p = sub.add_parser("report")
     p.add_argument("work"), p.add_argument("out")

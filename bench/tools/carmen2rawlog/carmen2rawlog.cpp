@@ -1,25 +1,22 @@
 // carmen2rawlog LOG OUT_PREFIX
 //
 // Writes a CARMEN log (read by dsswarm's reader: file order, `# PARAM`
-// geometry, laser offset) as MRPT rawlogs, every record stamped with the
-// scan's own timestamp (MRPT 2.5.8's carmen2rawlog stamps them with the time
-// of conversion instead, and icp-slam's pose extrapolation then never lines
-// up with the odometry). Two formats, as the two apps want them:
-//   OUT_PREFIX.obs.rawlog  observations only, what carmen2rawlog writes: per
-//                          scan its odometry pose (CObservationOdometry), then
-//                          the scan (CObservation2DRangeScan); icp-slam.
-//   OUT_PREFIX.sf.rawlog   actions and sensory frames: per scan the odometry
-//                          increment since the previous scan
-//                          (CActionRobotMovement2D, MRPT's default Gaussian
-//                          motion model), then the scan; rbpf-slam (which
-//                          crashes on the other format).
-//   OUT_PREFIX.stamps      one line per scan, its timestamp (6 decimals): the
-//                          time of each scan step of the apps' per-step path.
+// geometry, laser offset) as an MRPT rawlog for icp-slam and rbpf-slam, every
+// record stamped with the scan's own timestamp: MRPT 2.5.8's carmen2rawlog
+// stamps them with the time of conversion instead, and icp-slam's pose
+// extrapolation then never lines up with the odometry.
+//   OUT_PREFIX.rawlog  actions and sensory frames: per scan the odometry
+//                      increment since the previous scan
+//                      (CActionRobotMovement2D, MRPT's default Gaussian motion
+//                      model), then the scan (CObservation2DRangeScan). The
+//                      observations-only format carmen2rawlog writes crashes
+//                      rbpf-slam.
+//   OUT_PREFIX.stamps  one line per scan, its timestamp (6 decimals): the time
+//                      of each step of the apps' log_estimated_path.txt.
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
-#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -57,14 +54,6 @@ mrpt::obs::CObservation2DRangeScan::Ptr to_mrpt(const LaserScan& scan) {
 
 mrpt::poses::CPose2D to_mrpt(const Pose2& p) { return {p.x, p.y, p.theta}; }
 
-mrpt::obs::CObservationOdometry odometry_observation(const Pose2& odometry, double timestamp) {
-  mrpt::obs::CObservationOdometry odo;
-  odo.sensorLabel = "ODOMETRY";
-  odo.timestamp = mrpt::Clock::fromDouble(timestamp);
-  odo.odometry = to_mrpt(odometry);
-  return odo;
-}
-
 mrpt::obs::CActionCollection odometry_action(const Pose2& increment, double timestamp) {
   mrpt::obs::CActionRobotMovement2D move;
   move.computeFromOdometry(to_mrpt(increment), mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
@@ -77,25 +66,22 @@ mrpt::obs::CActionCollection odometry_action(const Pose2& increment, double time
 void convert(const std::string& log_path, const std::string& prefix) {
   const dsswarm::SensorLog log = dsswarm::read_carmen(log_path);
   if (log.scans.empty()) throw std::runtime_error(log_path + ": no laser scans");
-  mrpt::io::CFileOutputStream obs_file(prefix + ".obs.rawlog"), sf_file(prefix + ".sf.rawlog");
-  auto obs_out = mrpt::serialization::archiveFrom(obs_file);
-  auto sf_out = mrpt::serialization::archiveFrom(sf_file);
+  mrpt::io::CFileOutputStream file(prefix + ".rawlog");
+  auto rawlog = mrpt::serialization::archiveFrom(file);
   std::ofstream stamps(prefix + ".stamps");
   Pose2 previous = log.scans.front().odometry.value_or(Pose2());
   for (const LaserScan& scan : log.scans) {
     if (!scan.odometry) throw std::runtime_error(log_path + ": a scan without odometry");
-    const auto observation = to_mrpt(scan);
-    obs_out << odometry_observation(*scan.odometry, scan.timestamp) << *observation;
     mrpt::obs::CSensoryFrame frame;
-    frame.insert(observation);
-    sf_out << odometry_action(previous.inverse() * *scan.odometry, scan.timestamp) << frame;
+    frame.insert(to_mrpt(scan));
+    rawlog << odometry_action(previous.inverse() * *scan.odometry, scan.timestamp) << frame;
     previous = *scan.odometry;
     char line[64];
     std::snprintf(line, sizeof line, "%.6f\n", scan.timestamp);
     stamps << line;
   }
   if (!stamps) throw std::runtime_error(prefix + ".stamps: write failed");
-  std::fprintf(stderr, "%s: %zu scans -> %s.{obs,sf}.rawlog\n", log_path.c_str(), log.scans.size(), prefix.c_str());
+  std::fprintf(stderr, "%s: %zu scans -> %s.rawlog\n", log_path.c_str(), log.scans.size(), prefix.c_str());
 }
 
 }  // namespace
