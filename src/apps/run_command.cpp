@@ -29,7 +29,7 @@ struct RunArgs {
   std::string save_map;    // .dsmap written at the end (the robot's own map)
   std::string load_map;    // .dsmap to continue mapping in
   std::string start_pose;  // "x,y,theta" in the loaded map's frame
-  std::optional<std::size_t> max_scans;  // only the first N scans (benchmarks, profiling)
+  std::size_t max_scans = 0;             // only the first N scans, 0: all (benchmarks, profiling)
   bool no_images = false;                // trajectory and stats only
   SlamOptions slam;
 };
@@ -54,8 +54,8 @@ void run(const RunArgs& a) {
     continued = load_map_to_continue(a.load_map, config);
     for (const auto& w : continued->warnings) spdlog::warn("{}", w);
   }
-  const std::optional<Pose2> start_pose =
-      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(parse_pose_option(a.start_pose, "--start-pose"));
+  std::optional<Pose2> start_pose;
+  if (!a.start_pose.empty()) start_pose.emplace(parse_pose_option(a.start_pose, "--start-pose"));
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
@@ -71,14 +71,14 @@ void run(const RunArgs& a) {
     for (auto& s : log.scans) s.laser_offset = parse_offset(a.laser_offset);
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
-  if (a.max_scans && log.scans.size() > *a.max_scans) log.scans.resize(*a.max_scans);
+  if (a.max_scans > 0 && log.scans.size() > a.max_scans) log.scans.resize(a.max_scans);
 
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same
   // start) starts there by default.
   std::unique_ptr<Slam> slam;
   if (continued) {
-    const Pose2 start = start_pose.value_or(log.scans.front().odometry.value_or(Pose2()));
+    const Pose2 start = start_pose ? *start_pose : log.scans.front().odometry.value_or(Pose2());
     slam = std::make_unique<Slam>(config, std::move(continued->map), start);
   } else {
     slam = std::make_unique<Slam>(config);
