@@ -86,29 +86,15 @@ run_timed() {
   /usr/bin/time -f "%e %U %S %M" -o "$work/out/$name.time" "$@" > "$work/out/$name.log" 2>&1 || rc=$?
   return $rc
 }
-# record SYSTEM DATASET TRAJECTORY: scores the trajectory, writes runs/SYSTEM-DATASET.json.
+# record SYSTEM DATASET TRAJECTORY [ERROR]: scores the trajectory, writes runs/SYSTEM-DATASET.json.
 record() {
-  local system=$1 dataset=$2 tum=$3 error=${4:-}
-  local name=$system-$dataset scans rel="null" wall user sys rss
-  scans=$(wc -l < "$work/$dataset.stamps")
-  read -r wall user sys rss < <(tail -n 1 "$work/out/$name.time") || { wall=0 user=0 sys=0 rss=0; }
+  local system=$1 dataset=$2 tum=$3 error=${4:-} rel=null
   if [ -z "$error" ]; then
     rel=$("$dsswarm" eval relations "$tum" "$data/relations/$dataset.relations" --max-dt 0.001 | tail -n 1) ||
-      { rel="null"; error="eval relations failed"; }
+      { rel=null; error="eval relations failed"; }
   fi
-  python3 - "$work/runs/$name.json" "$system" "$dataset" "$scans" "$wall" "$user" "$sys" "$rss" "$rel" "$error" <<'PY'
-import json, sys
-path, system, dataset, scans, wall, user, sys_, rss, rel, error = sys.argv[1:]
-scans, wall, cpu, rss = int(scans), float(wall), float(user) + float(sys_), int(rss)
-run = {"system": system, "dataset": dataset, "scans": scans, "wall_seconds": wall, "cpu_seconds": cpu,
-       "scans_per_second": scans / wall if wall > 0 else None,
-       "scans_per_cpu_second": scans / cpu if cpu > 0 else None, "peak_rss_mb": rss / 1024,
-       "relations": json.loads(rel)}
-if error:
-    run["error"] = error
-json.dump(run, open(path, "w"), indent=2)
-PY
-  printf '%-15s %-10s %s\n' "$system" "$dataset" "$(python3 -c "import json;r=json.load(open('$work/runs/$name.json'));rel=r['relations'] or {};print(f\"{r['wall_seconds']:.1f} s, {r['scans_per_second'] or 0:.0f} scans/s, {r['peak_rss_mb']:.0f} MB, error {rel.get('trans_mean', float('nan')):.3f} m, missing {rel.get('missing', '-')}\", r.get('error', ''))")"
+  python3 "$tools" record "$work/runs/$system-$dataset.json" "$system" "$dataset" "$work/$dataset.stamps" \
+    "$work/out/$system-$dataset.time" "$rel" "$error"
 }
 
 # MRPT's sample configuration with output settings replaced: ini KEY=VALUE...

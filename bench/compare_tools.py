@@ -29,6 +29,28 @@ def mrpt_path_to_tum(args):
             out.write(f"{stamp} {x:.6f} {y:.6f} 0 0 0 {math.sin(yaw / 2):.9f} {math.cos(yaw / 2):.9f}\n")
 
 
+def record(args):
+    """One run's figures (GNU time's `%e %U %S %M` line, the relations JSON)
+    -> runs/SYSTEM-DATASET.json, and a summary line."""
+    scans = sum(1 for line in open(args.stamps) if line.strip())
+    try:
+        wall, user, sys_, rss = open(args.time).read().split("\n")[-2].split()
+    except (OSError, IndexError, ValueError):
+        wall, user, sys_, rss = 0, 0, 0, 0
+    wall, cpu, rss = float(wall), float(user) + float(sys_), int(rss)
+    run = {"system": args.system, "dataset": args.dataset, "scans": scans, "wall_seconds": wall, "cpu_seconds": cpu,
+           "scans_per_second": scans / wall if wall > 0 else None,
+           "scans_per_cpu_second": scans / cpu if cpu > 0 else None, "peak_rss_mb": rss / 1024,
+           "relations": json.loads(args.relations)}
+    if args.error:
+        run["error"] = args.error
+    with open(args.out, "w") as f:
+        json.dump(run, f, indent=2)
+    rel = run["relations"] or {}
+    print(f"{args.system:15s} {args.dataset:10s} {wall:.1f} s, {cpu:.1f} CPU s, {run['peak_rss_mb']:.0f} MB, "
+          f"error {rel.get('trans_mean', float('nan')):.3f} m, missing {rel.get('missing', '-')} {args.error}")
+
+
 SYSTEMS = ["dsswarm", "dsswarm-filter", "icp-slam", "rbpf-slam"]
 DATASETS = ["mit-csail", "fr079", "intel"]
 LABELS = {"dsswarm": "dsswarm", "dsswarm-filter": "dsswarm --filter", "icp-slam": "MRPT icp-slam",
@@ -206,6 +228,10 @@ def main():
     p = sub.add_parser("mrpt-tum")
     p.add_argument("path"), p.add_argument("stamps"), p.add_argument("out")
     p.set_defaults(run=mrpt_path_to_tum)
+    p = sub.add_parser("record")
+    for name in ("out", "system", "dataset", "stamps", "time", "relations", "error"):
+        p.add_argument(name)
+    p.set_defaults(run=record)
     p = sub.add_parser("report")
     p.add_argument("work"), p.add_argument("out")
     p.set_defaults(run=report)
