@@ -10,7 +10,8 @@ packages=(
   libpng-dev zlib1g-dev libzstd-dev libyaml-cpp-dev libsqlite3-dev liblz4-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
-  cyclonedds-dev cyclonedds-tools
+  cyclonedds-dev cyclonedds-tools libssl-dev
+  clang libclang-rt-14-dev llvm  # sanitizer build + libFuzzer; llvm-symbolizer for readable reports
   "$@"
 )
 missing=()

@@ -16,11 +16,17 @@ namespace {
 
 using namespace std::chrono_literals;
 
+// Messages held for one encounter whose scan has not come yet: an offer and a
+// placement at most in a well-behaved exchange.
+constexpr std::size_t kMaxHeldPerEncounter = 64;
+
 AgentOptions resolved(AgentOptions o) {
   if (!is_valid_agent_name(o.name))
     throw ConfigError(fmt::format("'{}' is not a valid robot name (letters, digits, '_', '-', '.'; at most {})", o.name,
                                   kMaxAgentNameLength));
   o.swarm.validate();
+  if (!(o.time_scale > 0.0)) throw ConfigError("agent: the time scale (playback rate) must be > 0");
+  o.swarm.exchange_timeout *= o.time_scale;  // the same wall time on the play clock
   if (!(o.heartbeat_period > 0.0) || !(o.peer_timeout > o.heartbeat_period))
     throw ConfigError("agent: the peer timeout must exceed the heartbeat period, both > 0");
   if (o.incarnation == 0)
@@ -68,6 +74,7 @@ AgentRuntime::AgentRuntime(AgentOptions options, ScanFeed& feed, protocol::Swarm
 }
 
 AgentRuntime::~AgentRuntime() {
+  if (checkpoint_writer_.joinable()) checkpoint_writer_.join();
   stop_swarm_ = true;
   link_.wake();
   if (swarm_thread_.joinable()) swarm_thread_.join();
@@ -75,6 +82,7 @@ AgentRuntime::~AgentRuntime() {
 }
 
 double AgentRuntime::now() const { return std::chrono::duration<double>(SteadyClock::now() - started_).count(); }
+double AgentRuntime::swarm_now() const { return now() * options_.time_scale; }
 
 void AgentRuntime::run(const std::atomic<bool>& stop) {
   swarm_thread_ = std::thread([this] { swarm_loop(); });
@@ -100,6 +108,11 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
   link_.wake();
   swarm_thread_.join();
   heartbeat_thread_.join();
+  {  // encounters still open are recorded as such, not lost
+    std::lock_guard lock(engine_mutex_);
+    engine_->abandon_all(options_.name + " stopped", swarm_now());
+    flush_engine();
+  }
   for (std::uint64_t id : shared_->install_ready()) note_installed(id);
   write_outputs();
 }
@@ -137,7 +150,7 @@ void AgentRuntime::after_scan(const LaserScan& scan, const SlamStep& step) {
   }
   if (options_.checkpoint_period > 0.0 && now() - last_checkpoint_ >= options_.checkpoint_period) {
     last_checkpoint_ = now();
-    checkpoint();
+    checkpoint(false);
   }
 }
 
@@ -155,7 +168,10 @@ void AgentRuntime::fire(std::vector<Trigger> due) {
 void AgentRuntime::swarm_loop() {
   while (!stop_swarm_.load()) {
     std::vector<std::vector<std::uint8_t>> arrived = link_.receive(50ms);
-    const double t = now();
+    const double t = swarm_now();
+    // Peers are judged by what had arrived by now: handling this batch may
+    // take a while (placing a peer's scan), and their heartbeats wait meanwhile.
+    const double received_at = now();
     std::lock_guard lock(engine_mutex_);
     for (const std::vector<std::uint8_t>& bytes : arrived) {
       protocol::MessageGate::Verdict v = gate_.admit(bytes);
@@ -172,46 +188,61 @@ void AgentRuntime::swarm_loop() {
     }
     for (const Trigger& f : fired) start_encounter(f.peer, f.encounter, t);
     engine_->tick(t);
-    drop_silent_peers(t);
-    flush_engine(t);
+    drop_silent_peers(received_at);
+    flush_engine();
   }
 }
 
 void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double t) {
   const std::string& from = m.header.sender;
   if (const auto* h = std::get_if<protocol::Heartbeat>(&m.body)) {
-    peers_[from] = Peer{h->status, t, false};
+    peers_[from] = Peer{h->status, now(), false};  // (≥ received_at: it was in the batch)
     return;
   }
   if (const auto* p = std::get_if<protocol::Proximity>(&m.body)) {
-    if (p->a != options_.name && p->b != options_.name) return;
-    const bool am_a = p->a == options_.name;
-    const std::string& peer = am_a ? p->b : p->a;
-    const double stamp = am_a ? p->a_stamp : p->b_stamp;
-    if (std::isnan(stamp)) {
-      start_encounter(peer, p->event, t);
-      return;
-    }
-    std::lock_guard tl(trigger_mutex_);
-    std::vector<Trigger> now_due = triggers_.arm({peer, p->event, stamp, SteadyClock::now(), false});
-    fire(std::move(now_due));
+    on_proximity(*p, t);
     return;
   }
   const std::uint64_t id = encounter_of(m.body);
   {
     std::lock_guard tl(trigger_mutex_);
     if (triggers_.armed(from, id)) {  // our view is not taken yet: it waits for its scan
-      held_[{from, id}].emplace_back(m, bytes);
+      auto& held = held_[{from, id}];
+      if (held.size() < kMaxHeldPerEncounter) held.emplace_back(m, bytes);  // beyond: the exchange times out
       return;
     }
   }
   engine_->receive(m, bytes, t);
 }
 
+bool AgentRuntime::arm_unless_now(const protocol::Proximity& p) {
+  if (p.a != options_.name && p.b != options_.name) return true;
+  const bool am_a = p.a == options_.name;
+  const double stamp = am_a ? p.a_stamp : p.b_stamp;
+  if (std::isnan(stamp)) return false;
+  std::lock_guard tl(trigger_mutex_);
+  fire(triggers_.arm({am_a ? p.b : p.a, p.event, stamp, SteadyClock::now(), false}));
+  return true;
+}
+
+void AgentRuntime::on_proximity(const protocol::Proximity& p, double t) {
+  if (!arm_unless_now(p)) start_encounter(p.a == options_.name ? p.b : p.a, p.event, t);
+}
+
+void AgentRuntime::raise_proximity(const protocol::Proximity& p) {
+  // A stamped event only arms a trigger: it must not wait for the engine,
+  // which the swarm thread holds while it places a peer's scan (seconds): the
+  // scan the event names would pass meanwhile and the robot join late, from
+  // another view than the in-process swarm's.
+  if (arm_unless_now(p)) return;
+  std::lock_guard lock(engine_mutex_);
+  on_proximity(p, swarm_now());
+}
+
 void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, double t) {
   {
     std::lock_guard lock(report_mutex_);
-    event_time_.emplace(id, t);
+    event_time_.emplace(id, now());  // wall time: latencies are the robot's
   }
   engine_->start(peer, id, t);
   if (auto it = held_.find({peer, id}); it != held_.end()) {
@@ -220,14 +251,14 @@ void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, do
   }
 }
 
-void AgentRuntime::flush_engine(double t) {
+void AgentRuntime::flush_engine() {
   for (const protocol::Outgoing& out : engine_->take_outbox()) link_.send(out.recipient, out.bytes);
   for (protocol::EncounterOutcome& o : engine_->take_outcomes()) {
     using End = protocol::EncounterOutcome::End;
     if (o.end == End::accepted || o.end == End::rejected) ++decided_;
     if (o.end == End::accepted) {
       ++accepted_;
-      last_merge_ = t;
+      last_merge_ = now();
     }
     spdlog::info("{}: encounter {} with {}: {}{}", options_.name, o.encounter, o.peer,
                  o.end == End::accepted ? "accepted" : "not merged", o.reason.empty() ? "" : " (" + o.reason + ")");
@@ -237,11 +268,12 @@ void AgentRuntime::flush_engine(double t) {
   open_encounters_ = engine_->open_encounters();
 }
 
-void AgentRuntime::drop_silent_peers(double t) {
+void AgentRuntime::drop_silent_peers(double wall) {
   for (auto& [name, peer] : peers_) {
-    if (peer.lost || t - peer.last_heard <= options_.peer_timeout) continue;
+    if (peer.lost || wall - peer.last_heard <= options_.peer_timeout) continue;
     peer.lost = true;
-    engine_->drop_peer(name, fmt::format("no heartbeat from {} for {:.0f} s", name, options_.peer_timeout), t);
+    engine_->drop_peer(name, fmt::format("no heartbeat from {} for {:.0f} s", name, options_.peer_timeout),
+                       swarm_now());
   }
 }
 
@@ -299,7 +331,12 @@ AgentReport AgentRuntime::report() const {
   return r;
 }
 
-void AgentRuntime::checkpoint() {
+void AgentRuntime::checkpoint(bool wait) {
+  // Encoding and writing a big map takes a while: off the scan path, one at a time.
+  if (checkpoint_writer_.joinable()) {
+    if (!wait && !checkpoint_written_) return;  // the last one is still being written: skip this round
+    checkpoint_writer_.join();
+  }
   Checkpoint c = shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {
     Checkpoint k;
     k.name = options_.name;
@@ -310,15 +347,20 @@ void AgentRuntime::checkpoint() {
     k.trajectory = trajectory;
     return k;
   });
-  try {
-    write_checkpoint(options_.out, c);
-  } catch (const std::exception& e) {
-    warnings_.note(fmt::format("{}: checkpoint not written: {}", options_.name, e.what()));
-  }
+  checkpoint_written_ = false;
+  checkpoint_writer_ = std::thread([this, c = std::move(c)] {
+    try {
+      write_checkpoint(options_.out, c);
+    } catch (const std::exception& e) {
+      spdlog::warn("{}: checkpoint not written: {}", options_.name, e.what());
+    }
+    checkpoint_written_ = true;
+  });
+  if (wait) checkpoint_writer_.join();
 }
 
 void AgentRuntime::write_outputs() {
-  checkpoint();
+  checkpoint(true);
   const AgentReport r = report();
   shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {
     write_agent_files(options_.out, a, trajectory, r, options_.swarm);

@@ -51,6 +51,10 @@ struct AgentOptions {
   double trigger_patience = 10.0;    // s a stamped proximity event waits for its scan
   double linger = 0.0;               // s to go on answering peers once the feed has run out
   bool resume = false;               // continue from the checkpoint in `out`
+  // Recorded input played × rate: the swarm's clocks (re-merge interval,
+  // exchange time-out) run on the play clock, so a run at rate X decides as
+  // the in-process swarm does at its own session clock. 1 for live robots.
+  double time_scale = 1.0;
   std::uint64_t incarnation = 0;     // 0: the start time (ns); tests pin it
   protocol::WireLimits limits;
 };
@@ -80,6 +84,9 @@ class AgentRuntime {
   void run(const std::atomic<bool>& stop);
   AgentReport report() const;
   const SharedAgent& agent() const { return *shared_; }
+  // A proximity sensor on this robot says a peer is near (as a received
+  // Proximity message would); from any thread.
+  void raise_proximity(const protocol::Proximity& event);
 
  private:
   void swarm_loop();
@@ -87,14 +94,18 @@ class AgentRuntime {
   void heartbeat_loop();
   protocol::AgentStatus status(double now) const;
   void handle(const protocol::Message& m, std::size_t bytes, double now);
+  void on_proximity(const protocol::Proximity& p, double now);
+  // Arms a stamped event's trigger; false when the event means "now" for this robot.
+  bool arm_unless_now(const protocol::Proximity& p);
   void start_encounter(const std::string& peer, std::uint64_t id, double now);
   void after_scan(const LaserScan& scan, const SlamStep& step);
   void fire(std::vector<Trigger> due);
-  void flush_engine(double now);
+  void flush_engine();
   void drop_silent_peers(double now);
-  void checkpoint();
+  void checkpoint(bool wait);  // wait: until written (at exit)
   void write_outputs();
-  double now() const;
+  double now() const;        // s of wall time since start
+  double swarm_now() const;  // the same on the play clock (× time_scale)
 
   AgentOptions options_;
   ScanFeed& feed_;
@@ -141,6 +152,8 @@ class AgentRuntime {
   std::atomic<std::uint64_t> processed_{0};
   std::thread swarm_thread_;
   std::thread heartbeat_thread_;
+  std::thread checkpoint_writer_;
+  std::atomic<bool> checkpoint_written_{true};
 };
 
 }  // namespace dsswarm::agent

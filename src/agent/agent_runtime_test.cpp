@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
 #include <fstream>
+#include <future>
+#include <mutex>
 #include <thread>
 
 #include "agent/checkpoint.hpp"
@@ -13,6 +18,13 @@
 
 namespace dsswarm::agent {
 namespace {
+
+PacedFeedConfig paced(double rate, std::size_t queue) {
+  PacedFeedConfig c;
+  c.rate = rate;
+  c.queue_capacity = queue;
+  return c;
+}
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -70,7 +82,7 @@ struct LiveSwarm {
     }
   }
   PacedFeed* feed_of(const AgentStream& s, double rate) {
-    feeds.push_back(std::make_unique<PacedFeed>(s.scans, s.clock, PacedFeedConfig{.rate = rate, .queue_capacity = 64}));
+    feeds.push_back(std::make_unique<PacedFeed>(s.scans, s.clock, paced(rate, 64)));
     return feeds.back().get();
   }
   void run() {
@@ -126,7 +138,7 @@ TEST(AgentRuntime, GarbageAndReplayedMessagesAreCountedAndChangeNothing) {
   const fs::path out = fresh_dir("garbage");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  PacedFeed feed(s.scans, s.clock, {.rate = 3.0, .queue_capacity = 64});
+  PacedFeed feed(s.scans, s.clock, paced(3.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.5;
@@ -162,7 +174,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   for (std::size_t i = 0; i < second.scans.size(); ++i) second.clock.push_back(0.1 * static_cast<double>(i));
   std::size_t version_before = 0;
   {
-    PacedFeed feed(first.scans, first.clock, {.rate = 5.0, .queue_capacity = 64});
+    PacedFeed feed(first.scans, first.clock, paced(5.0, 64));
     auto link = bus->join("a");
     AgentOptions o = options_for("a", out);
     o.linger = 0.0;
@@ -172,7 +184,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
     version_before = read_checkpoint(out, "a").snapshot.layers.at(0).version;
   }
   ASSERT_GT(version_before, 0u);
-  PacedFeed feed(second.scans, second.clock, {.rate = 5.0, .queue_capacity = 64});
+  PacedFeed feed(second.scans, second.clock, paced(5.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.0;
@@ -189,6 +201,72 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   EXPECT_NEAR(t.back().pose.y, truth.y, 0.05);
   EXPECT_GT(read_checkpoint(out, "a").snapshot.layers.at(0).version, version_before);
   EXPECT_EQ(runtime.report().status.scans_processed, 30u);
+}
+
+// A link whose messages to one robot are held up (a DDS writer waiting for
+// that robot's reader) until released: the swarm thread is busy meanwhile.
+class SlowLink : public protocol::SwarmLink {
+ public:
+  SlowLink(std::unique_ptr<protocol::SwarmLink> inner, std::string slow) : inner_(std::move(inner)), slow_(std::move(slow)) {}
+  bool send(const std::string& recipient, std::span<const std::uint8_t> bytes) override {
+    if (recipient == slow_) {
+      std::unique_lock lock(mutex_);
+      holding_ = true;
+      changed_.notify_all();
+      changed_.wait(lock, [&] { return released_; });
+    }
+    return inner_->send(recipient, bytes);
+  }
+  std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override {
+    return inner_->receive(timeout);
+  }
+  void wake() override { inner_->wake(); }
+  void wait_until_holding() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return holding_; });
+  }
+  void release() {
+    std::lock_guard lock(mutex_);
+    released_ = true;
+    changed_.notify_all();
+  }
+
+ private:
+  std::unique_ptr<protocol::SwarmLink> inner_;
+  std::string slow_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool holding_ = false, released_ = false;
+};
+
+TEST(AgentRuntime, AStampedEventIsArmedWhileTheSwarmThreadIsBusy) {
+  const fs::path out = fresh_dir("busy");
+  auto bus = std::make_shared<protocol::MemoryBus>();
+  const AgentStream s = two_robots()[0];
+  PacedFeed feed(s.scans, s.clock, paced(1.0, 64));  // 3 s
+  SlowLink link(bus->join("a"), "b");
+  AgentOptions o = options_for("a", out);
+  o.linger = 0.0;
+  o.swarm.exchange_timeout = 0.5;
+  AgentRuntime runtime(o, feed, link);
+  std::atomic<bool> stop{false};
+  std::thread robot([&] { runtime.run(stop); });
+  // "Now" with b before the first scan: a declines, and its decline to b is held up.
+  runtime.raise_proximity({"a", "b", 1, std::nan(""), std::nan("")});
+  link.wait_until_holding();
+  const double named = s.scans[10].timestamp;  // played at 1 s
+  auto raised = std::async(std::launch::async, [&] { runtime.raise_proximity({"a", "c", 2, named, std::nan("")}); });
+  const bool at_once = raised.wait_for(500ms) == std::future_status::ready;
+  std::this_thread::sleep_for(2s);  // past the scan named
+  link.release();
+  raised.wait();
+  robot.join();
+  EXPECT_TRUE(at_once) << "raise_proximity waited for the busy swarm thread";
+  const AgentReport r = runtime.report();
+  EXPECT_EQ(r.triggers_late, 0u);
+  const auto with_c = std::find_if(r.outcomes.begin(), r.outcomes.end(), [](const auto& x) { return x.encounter == 2; });
+  ASSERT_NE(with_c, r.outcomes.end());
+  EXPECT_DOUBLE_EQ(with_c->self_stamp, named);  // joined right after the scan named, not later
 }
 
 TEST(AgentRuntime, ResumingWithoutACheckpointIsAClearError) {

@@ -1,20 +1,8 @@
 #include "agent/paced_feed.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace dsswarm::agent {
-
-std::vector<double> play_clock(const std::vector<LaserScan>& scans) {
-  std::vector<double> clock;
-  clock.reserve(scans.size());
-  double latest = scans.empty() ? 0.0 : scans.front().timestamp;
-  for (const LaserScan& s : scans) {
-    latest = std::max(latest, s.timestamp);
-    clock.push_back(latest - scans.front().timestamp);
-  }
-  return clock;
-}
 
 PacedFeed::PacedFeed(std::vector<LaserScan> scans, std::vector<double> clock, const PacedFeedConfig& config)
     : scans_(std::move(scans)), clock_(std::move(clock)), config_(config) {
@@ -33,8 +21,14 @@ PacedFeed::~PacedFeed() {
   player_.join();
 }
 
+std::chrono::steady_clock::time_point steady_start(const std::optional<std::chrono::system_clock::time_point>& start_at) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!start_at) return now;
+  return now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(*start_at - std::chrono::system_clock::now());
+}
+
 void PacedFeed::play() {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = steady_start(config_.start_at);
   for (std::size_t i = 0; i < scans_.size(); ++i) {
     const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                  std::chrono::duration<double>(clock_[i] / config_.rate));

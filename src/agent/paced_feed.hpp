@@ -7,17 +7,24 @@
 #include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
 #include "agent/scan_feed.hpp"
+#include "sensor/play_clock.hpp"  // the clocks PacedFeed plays by
 
 namespace dsswarm::agent {
 
 struct PacedFeedConfig {
   double rate = 1.0;             // × real time
   std::size_t queue_capacity = 8;  // scans waiting for the robot; the oldest is dropped beyond
+  // When clock 0 is (robots of one launch start together); default: now.
+  std::optional<std::chrono::system_clock::time_point> start_at;
 };
+
+// The steady-clock moment of `start_at` (or now).
+std::chrono::steady_clock::time_point steady_start(const std::optional<std::chrono::system_clock::time_point>& start_at);
 
 class PacedFeed : public ScanFeed {
  public:
@@ -46,9 +53,5 @@ class PacedFeed : public ScanFeed {
   std::atomic<std::uint64_t> received_{0}, dropped_{0};
   std::thread player_;  // last: starts once everything above exists
 };
-
-// The play clock of a log as `dsswarm replay` and scenarios use it: scan i at
-// t_i − t_0, held at the running maximum where timestamps run backwards.
-std::vector<double> play_clock(const std::vector<LaserScan>& scans);
 
 }  // namespace dsswarm::agent

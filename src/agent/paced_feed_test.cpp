@@ -7,6 +7,13 @@
 namespace dsswarm::agent {
 namespace {
 
+PacedFeedConfig paced(double rate, std::size_t queue) {
+  PacedFeedConfig c;
+  c.rate = rate;
+  c.queue_capacity = queue;
+  return c;
+}
+
 using namespace std::chrono_literals;
 
 std::vector<LaserScan> numbered(int n) {
@@ -17,7 +24,7 @@ std::vector<LaserScan> numbered(int n) {
 
 TEST(PacedFeed, PlaysInRealTimeTimesTheRate) {
   const auto start = std::chrono::steady_clock::now();
-  PacedFeed feed(numbered(11), std::vector<double>{0, .1, .2, .3, .4, .5, .6, .7, .8, .9, 1.0}, {.rate = 5.0});
+  PacedFeed feed(numbered(11), std::vector<double>{0, .1, .2, .3, .4, .5, .6, .7, .8, .9, 1.0}, paced(5.0, 8));
   int got = 0;
   while (!feed.exhausted())
     if (feed.next(100ms)) ++got;
@@ -29,7 +36,7 @@ TEST(PacedFeed, PlaysInRealTimeTimesTheRate) {
 }
 
 TEST(PacedFeed, ARobotThatFallsBehindLosesTheOldestScansNotMemory) {
-  PacedFeed feed(numbered(50), std::vector<double>(50, 0.0), {.rate = 1.0, .queue_capacity = 4});
+  PacedFeed feed(numbered(50), std::vector<double>(50, 0.0), paced(1.0, 4));
   while (feed.received() < 50) std::this_thread::sleep_for(5ms);
   EXPECT_EQ(feed.dropped(), 46u);
   const auto first = feed.next(10ms);

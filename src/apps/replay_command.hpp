@@ -4,6 +4,13 @@
 // <ns>/scan, Odometry on <ns>/odom, odom → base_link on /tf, base_link →
 // laser on /tf_static; header stamps are the log's own timestamps, pacing is
 // real time × --rate.
+//
+// `--scenario FILE --agent NAME` plays that agent's stream of a scenario
+// instead (its segment, direction and start offset): scan i at
+// start_at + clock[i] / rate on the scenario's session clock, so the replays
+// of a launch, started with one --start-at, play as `dsswarm swarm` does. A
+// backward segment goes out last scan first, with its own (decreasing)
+// stamps, each scan's odometry at its stamp.
 #include <CLI/CLI.hpp>
 
 #include <optional>

@@ -12,6 +12,7 @@
 
 #include "common/agent_name.hpp"
 #include "common/errors.hpp"
+#include "sensor/play_clock.hpp"
 
 namespace dsswarm {
 namespace {
@@ -114,12 +115,12 @@ class ScenarioFile {
   std::string file_;
 };
 
-YAML::Node load_root(const fs::path& yaml) {
-  std::error_code ec;
-  if (!fs::is_regular_file(yaml, ec)) throw InputError(fmt::format("{}: scenario file not found", yaml.string()));
+// `load` parses the scenario's YAML (from its file or from text).
+template <typename Load>
+YAML::Node load_root(const fs::path& yaml, Load load) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(yaml.string());
+    root = load();
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}: line {}: invalid YAML: {}", yaml.string(), e.mark.line + 1, e.msg));
   } catch (const YAML::Exception& e) {
@@ -209,13 +210,12 @@ AgentStream build_stream(const AgentSpec& a, const SensorLog& log, const Segment
   if (a.backward) std::reverse(stream.scans.begin(), stream.scans.end());
   const double t_first = stream.scans.front().timestamp;
   const double sign = a.backward ? -1.0 : 1.0;
-  double elapsed = 0.0;
+  const std::vector<double> elapsed =
+      play_clock(stream.scans, a.backward ? PlayDirection::backward : PlayDirection::forward);
   std::size_t held = 0;
-  for (const LaserScan& scan : stream.scans) {
-    const double since_first = sign * (scan.timestamp - t_first);
-    if (since_first < elapsed) ++held;
-    elapsed = std::max(elapsed, since_first);
-    stream.clock.push_back(a.start + elapsed);
+  for (std::size_t i = 0; i < elapsed.size(); ++i) {
+    held += elapsed[i] > sign * (stream.scans[i].timestamp - t_first) ? 1 : 0;
+    stream.clock.push_back(a.start + elapsed[i]);
   }
   if (held > 0) {
     warnings.push_back(fmt::format(
@@ -395,10 +395,7 @@ std::vector<EncounterEvent> load_encounters(const ScenarioFile& f, const YAML::N
   return events;
 }
 
-}  // namespace
-
-SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogReadOptions& read) {
-  const YAML::Node root = load_root(yaml);
+SwarmScenario build_scenario(const YAML::Node& root, const fs::path& yaml, const LogReadOptions& read) {
   const ScenarioFile f(yaml.string());
   f.check_keys(root, "", "a scenario", {"name", "config", "relations", "agents", "encounters"});
 
@@ -410,6 +407,19 @@ SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogRe
   scenario.events = load_encounters(f, root, agents, scenario.warnings);
   scenario.streams = std::move(agents.streams);
   return scenario;
+}
+
+}  // namespace
+
+SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogReadOptions& read) {
+  std::error_code ec;
+  if (!fs::is_regular_file(yaml, ec)) throw InputError(fmt::format("{}: scenario file not found", yaml.string()));
+  return build_scenario(load_root(yaml, [&] { return YAML::LoadFile(yaml.string()); }), yaml, read);
+}
+
+SwarmScenario parse_swarm_scenario(const std::string& text, const std::filesystem::path& yaml,
+                                   const LogReadOptions& read) {
+  return build_scenario(load_root(yaml, [&] { return YAML::Load(text); }), yaml, read);
 }
 
 }  // namespace dsswarm

@@ -262,5 +262,26 @@ TEST(SwarmScenarioRealData, ShippedScenariosLoadWithEncountersWhereTheySay) {
   }
 }
 
+TEST(SwarmScenario, TextInMemoryReadsAsTheFileDoes) {
+  const fs::path file = scenario_with("in_memory", kTwoRobots);
+  const SwarmScenario from_file = load_swarm_scenario(file);
+  // The text is parsed as if it were the file: same folder for the logs, same name.
+  const SwarmScenario from_text = parse_swarm_scenario(kTwoRobots, file);
+  EXPECT_EQ(from_text.name, "scenario");
+  ASSERT_EQ(from_text.streams.size(), from_file.streams.size());
+  for (std::size_t i = 0; i < from_text.streams.size(); ++i) {
+    EXPECT_EQ(stamps_of(from_text.streams[i]), stamps_of(from_file.streams[i])) << i;
+    EXPECT_EQ(from_text.streams[i].clock, from_file.streams[i].clock) << i;
+  }
+  EXPECT_EQ(from_text.warnings, from_file.warnings);
+  const fs::path typed = file.parent_path() / "typed.yaml";
+  try {
+    parse_swarm_scenario("agents: [", typed);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(typed.string() + ": line 1:", 0), 0u) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -158,10 +158,15 @@ struct LiveScanSource::Impl {
     return std::nullopt;  // a loop, or a chain longer than any robot's
   }
 
+  // Odometry is known at a scan's stamp once poses on both sides of it have
+  // arrived: at or after it (a live robot's odometry runs a little behind its
+  // scans), and at or before it (a log played backward sends a scan's own
+  // odometry while every pose held is later).
   bool ready(const PendingScan& p, Clock::time_point now) const {
     if (now >= p.deadline) return true;
+    const double t = p.scan.timestamp;
     const bool odometry_known = config.odometry == OdometrySource::kNone ||
-                                (!odometry.empty() && odometry.back().stamp >= p.scan.timestamp);
+                                (!odometry.empty() && odometry.front().stamp <= t && odometry.back().stamp >= t);
     return odometry_known && laser_offset(p.frame).has_value();
   }
 

@@ -41,9 +41,10 @@ struct LiveInputConfig {
   // topic, the messages' child_frame_id (when set) is used instead.
   std::string base_frame = "base_link";
   std::size_t queue_capacity = 4;  // scans held for the consumer; the oldest is dropped beyond
-  // Wall-clock seconds a scan waits for odometry at or after its stamp and for
-  // its laser offset; then it goes out with what is known (odometry held up to
-  // max_extrapolation beyond the newest pose, else none; offset zero).
+  // Wall-clock seconds a scan waits for odometry on both sides of its stamp
+  // (or at it) and for its laser offset; then it goes out with what is known
+  // (odometry held up to max_extrapolation beyond the nearest pose, else
+  // none; offset zero).
   double wait_for_odometry = 0.25;
   double max_extrapolation = 0.1;        // s (scan time)
   double odometry_history = 5.0;         // s (scan time) of odometry kept for interpolation

@@ -140,6 +140,51 @@ TEST(LiveScanSource, OdometryIsInterpolatedAtTheScanStamp) {
   expect_pose_near(got->laser_offset, Pose2(), 0.0);
 }
 
+// A log played backward (`replay --scenario` of a backward agent): stamps
+// decrease, so the odometry already held is all later than the next scan —
+// which must still wait for, and get, exactly its own odometry, however its
+// own arrives after it. The run is longer than the odometry history.
+TEST(LiveScanSource, ABackwardPlayedStreamGetsEachScansOwnOdometry) {
+  Participant robot(loopback_config());
+  Participant agent(loopback_config());
+  LiveInputConfig config = input_config();
+  config.queue_capacity = 64;
+  config.wait_for_odometry = 2.0;  // a loaded machine may delay the odometry; the old rule did not wait at all
+  LiveScanSource input(agent, config);
+  Topic<ros::Odometry> odom_topic(robot, ros_topic_name(config.ns, "odom"));
+  Writer<ros::Odometry> odom(odom_topic, ros_default(50));
+  Topic<ros::LaserScan> scan_topic(robot, ros_topic_name(config.ns, "scan"));
+  Writer<ros::LaserScan> scan(scan_topic, ros_default(50));
+  ASSERT_TRUE(odom.wait_for_readers(1, kTimeout));
+  ASSERT_TRUE(scan.wait_for_readers(1, kTimeout));
+
+  constexpr int kScans = 40;
+  const double spacing = 1.5 * config.odometry_history / kScans;
+  const std::string base = "base_link";
+  std::vector<LaserScan> played;
+  for (int i = kScans - 1; i >= 0; --i) played.push_back(make_scan(kStart + spacing * i, i));
+  std::jthread robot_side([&] {
+    for (const LaserScan& s : played) {
+      scan.write(to_ros_scan(s, base));  // the scan first, its odometry a moment later
+      std::this_thread::sleep_for(20ms);
+      ros::Odometry o{};
+      o.header.stamp = to_ros_time(s.timestamp);
+      o.child_frame_id = borrow(base);
+      o.pose.pose = to_ros_pose(*s.odometry);
+      odom.write(o);
+      std::this_thread::sleep_for(20ms);
+    }
+  });
+  for (const LaserScan& want : played) {
+    const std::optional<LaserScan> got = input.next(kTimeout);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_NEAR(got->timestamp, want.timestamp, 1e-6);
+    ASSERT_TRUE(got->odometry.has_value()) << "scan at " << want.timestamp - kStart;
+    expect_pose_near(*got->odometry, *want.odometry, 1e-9);
+  }
+  EXPECT_EQ(input.stats().scans_without_odometry, 0u);
+}
+
 TEST(LiveScanSource, OdometryAndLaserMountFromTfThroughIntermediateFrames) {
   Participant robot(loopback_config());
   Participant agent(loopback_config());

@@ -79,8 +79,8 @@ void EncounterEngine::send(Exchange* x, const std::string& recipient, Body body)
   outbox_.push_back(std::move(out));
 }
 
-void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, const std::string& reason,
-                              double now) {
+void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, EncounterOutcome::Decline why,
+                              const std::string& reason, double now) {
   send(nullptr, peer, Decline{encounter, reason});
   EncounterOutcome o;
   o.encounter = encounter;
@@ -88,6 +88,7 @@ void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, 
   o.peer = peer;
   o.self_is_a = self_ < peer;
   o.end = EncounterOutcome::End::declined;
+  o.decline = why;
   o.reason = reason;
   o.started = o.ended = now;
   outcomes_.push_back(std::move(o));
@@ -102,22 +103,23 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
   const Key key{peer, encounter};
   if (auto it = open_.find(key); it != open_.end()) return it->second.get();
   if (!config_.merge) {
-    decline(peer, encounter, "merging is off", now);
+    decline(peer, encounter, EncounterOutcome::Decline::merging_off, "merging is off", now);
     return nullptr;
   }
   const double since = now - peers_[peer].last_merge;
   if (since < config_.remerge_interval) {
-    decline(peer, encounter, fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, since,
-                                         config_.remerge_interval), now);
+    decline(peer, encounter, EncounterOutcome::Decline::merged_recently,
+            fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, since, config_.remerge_interval),
+            now);
     return nullptr;
   }
   if (open_.size() >= config_.max_open_encounters) {
-    decline(peer, encounter, fmt::format("busy: {} encounters open", open_.size()), now);
+    decline(peer, encounter, EncounterOutcome::Decline::busy, fmt::format("busy: {} encounters open", open_.size()), now);
     return nullptr;
   }
   std::optional<CapturedView> view = port_.capture_view(peer, encounter);
   if (!view) {
-    decline(peer, encounter, "no scan yet", now);
+    decline(peer, encounter, EncounterOutcome::Decline::no_scan, "no scan yet", now);
     return nullptr;
   }
   auto x = std::make_unique<Exchange>();
@@ -235,7 +237,7 @@ void EncounterEngine::confirm(Exchange& x) {
   pending.push_back(t);
   if (pending.size() > config_.max_pending_confirmations) pending.erase(pending.begin());
   x.accepted = false;
-  o.reason = "awaiting confirmation: the placements verify, but the maps merge only once a second encounter agrees";
+  o.reason = "unconfirmed: the placements verify; the maps merge once a second encounter agrees";
 }
 
 void EncounterEngine::send_transfer(Exchange& x) {
@@ -254,6 +256,12 @@ void EncounterEngine::on_chunk(const std::string& peer, const Chunk& chunk, std:
   if (it == open_.end()) return;  // abandoned, or never ours
   Exchange& x = *it->second;
   x.outcome.bytes_received += bytes;
+  if (buffered_bytes() + chunk.data.size() > config_.max_transfer_bytes ||
+      chunk.total_bytes > config_.max_transfer_bytes) {
+    finish(it->first, EncounterOutcome::End::abandoned,
+           fmt::format("snapshot transfers would hold more than {} MiB", config_.max_transfer_bytes >> 20), now);
+    return;
+  }
   try {
     if (!x.incoming.add(chunk)) return;
   } catch (const ProtocolError& e) {
@@ -285,7 +293,7 @@ void EncounterEngine::absorb_transfer(Exchange& x, double now) {
     port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.id);
     x.outcome.merge_ms = ms_since(t0);
   }
-  peers_[x.peer].last_merge = now;
+  peers_[x.peer].last_merge = x.outcome.started;  // from the event, as robots that finish at different moments agree
   finish(key, EncounterOutcome::End::accepted, "", now);
 }
 
@@ -293,6 +301,7 @@ void EncounterEngine::on_decline(const std::string& peer, const Decline& decline
   auto it = open_.find({peer, decline.encounter});
   if (it == open_.end()) return;
   it->second->outcome.bytes_received += bytes;
+  it->second->outcome.decline = EncounterOutcome::Decline::by_peer;
   finish(it->first, EncounterOutcome::End::declined, peer + " declined: " + decline.reason, now);
 }
 
@@ -312,6 +321,10 @@ void EncounterEngine::drop_peer(const std::string& peer, const std::string& why,
   for (const auto& [key, x] : open_)
     if (key.first == peer) keys.push_back(key);
   for (const Key& k : keys) finish(k, EncounterOutcome::End::abandoned, why, now);
+}
+
+void EncounterEngine::abandon_all(const std::string& why, double now) {
+  while (!open_.empty()) finish(open_.begin()->first, EncounterOutcome::End::abandoned, why, now);
 }
 
 void EncounterEngine::tick(double now) {

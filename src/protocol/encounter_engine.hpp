@@ -47,11 +47,14 @@ class AgentPort {
 
 struct EncounterOutcome {
   enum class End { accepted, rejected, declined, abandoned };
+  // Why this robot declined to take part (declined by itself; a peer's decline is `by_peer`).
+  enum class Decline { none, merging_off, merged_recently, busy, no_scan, by_peer };
   std::uint64_t encounter = 0;
   std::string self, peer;
   bool self_is_a = true;  // A: the robot whose name sorts first
   End end = End::abandoned;
   std::string reason;        // why not accepted
+  Decline decline = Decline::none;
   std::string confirmed_by;  // accepted: "known transform" or "earlier encounter"
   EncounterEstimate estimate;  // set once decided
   bool decided = false;
@@ -80,6 +83,8 @@ class EncounterEngine {
   void receive(const Message& message, std::size_t wire_bytes, double now);
   // The peer restarted or vanished: its open encounters are abandoned.
   void drop_peer(const std::string& peer, const std::string& why, double now);
+  // Abandons every open encounter (this robot stops).
+  void abandon_all(const std::string& why, double now);
   // Abandons encounters older than the exchange timeout.
   void tick(double now);
 
@@ -108,7 +113,8 @@ class EncounterEngine {
   void send_transfer(Exchange& x);
   void absorb_transfer(Exchange& x, double now);
   void send(Exchange* x, const std::string& recipient, Body body);
-  void decline(const std::string& peer, std::uint64_t encounter, const std::string& reason, double now);
+  void decline(const std::string& peer, std::uint64_t encounter, EncounterOutcome::Decline why,
+               const std::string& reason, double now);
   void finish(const Key& key, EncounterOutcome::End end, std::string reason, double now);
   std::uint64_t seed_for(const Exchange& x) const;
 

@@ -152,7 +152,7 @@ TEST(EncounterEngine, AFirstVerifiedEstimateWaitsForASecondThatAgrees) {
   ASSERT_EQ(first_a.size(), 1u);
   EXPECT_EQ(first_a[0].end, End::rejected);
   EXPECT_EQ(first_b[0].end, End::rejected);
-  EXPECT_NE(first_a[0].reason.find("awaiting confirmation"), std::string::npos);
+  EXPECT_NE(first_a[0].reason.find("unconfirmed: "), std::string::npos);
   EXPECT_EQ(p.a.merges, 0);
   p.ea.start("b", 2, 1.0);
   p.eb.start("a", 2, 1.0);
@@ -213,6 +213,32 @@ TEST(EncounterEngine, APeerThatVanishesMidTransferIsDroppedAndItsPartialSnapshot
   EXPECT_EQ(p.a.merges, 0);  // nothing half-received reached the map
 }
 
+TEST(EncounterEngine, TransfersBeyondTheMemoryBoundAreAbandoned) {
+  SwarmConfig config = unconfirmed();
+  config.max_transfer_bytes = std::size_t{1} << 20;
+  Pair p(config);
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  // b claims a transfer far larger than a may hold: a gives up before buffering it.
+  p.pump(0.0, [&](const Outgoing& out) {
+    Message m = decode(out.bytes);
+    if (out.recipient != "a" || !std::holds_alternative<Chunk>(m.body)) return true;
+    return false;
+  });
+  ASSERT_EQ(p.ea.open_encounters(), 1u);  // waiting for b's snapshot
+  Chunk huge{1, 0, 4, std::uint64_t{64} << 20, 0, std::vector<std::uint8_t>(1000, 1)};
+  Message m;
+  m.header = {"b", "a", 1, 1000};
+  m.body = huge;
+  p.ea.receive(m, 1100, 0.0);
+  EXPECT_EQ(p.ea.open_encounters(), 0u);
+  EXPECT_EQ(p.ea.buffered_bytes(), 0u);
+  const auto o = p.ea.take_outcomes();
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_NE(o[0].reason.find("more than 1 MiB"), std::string::npos) << o[0].reason;
+  EXPECT_EQ(p.a.merges, 0);
+}
+
 TEST(EncounterEngine, OpenEncountersAreBounded) {
   SwarmConfig config = unconfirmed();
   config.max_open_encounters = 2;
@@ -225,6 +251,11 @@ TEST(EncounterEngine, OpenEncountersAreBounded) {
   for (const auto& x : o) EXPECT_NE(x.reason.find("busy"), std::string::npos);
   e.drop_peer("peer0", "vanished", 1.0);
   EXPECT_EQ(e.open_encounters(), 1u);
+  e.abandon_all("stopped", 2.0);
+  EXPECT_EQ(e.open_encounters(), 0u);
+  const auto ended = e.take_outcomes();
+  ASSERT_EQ(ended.size(), 2u);
+  EXPECT_EQ(ended[1].reason, "stopped");
 }
 
 }  // namespace

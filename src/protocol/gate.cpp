@@ -25,6 +25,9 @@ MessageGate::Verdict MessageGate::admit(std::span<const std::uint8_t> bytes) {
     return reject("misdirected", fmt::format("{} from {} is for {}", kind_name(kind_of(m.body)), h.sender, h.recipient));
   if (h.sequence == 0) return reject("replayed", fmt::format("{} from {} has sequence 0", kind_name(kind_of(m.body)), h.sender));
   Verdict v;
+  if (!incarnations_.contains(h.sender) && incarnations_.size() >= max_senders_)
+    return reject("too many senders", fmt::format("{} from {}: {} senders are known already",
+                                                  kind_name(kind_of(m.body)), h.sender, max_senders_));
   std::uint64_t& newest = incarnations_[h.sender];
   if (h.incarnation < newest)
     return reject("stale", fmt::format("{} from {} belongs to an earlier run of it", kind_name(kind_of(m.body)), h.sender));

@@ -15,7 +15,10 @@ namespace dsswarm::protocol {
 
 class MessageGate {
  public:
-  explicit MessageGate(std::string self, WireLimits limits = {}) : self_(std::move(self)), limits_(limits) {}
+  // At most `max_senders` distinct senders are tracked (a flood of invented
+  // names cannot grow the gate's memory); messages from more are refused.
+  explicit MessageGate(std::string self, WireLimits limits = {}, std::size_t max_senders = 1024)
+      : self_(std::move(self)), limits_(limits), max_senders_(max_senders) {}
 
   struct Verdict {
     std::optional<Message> message;  // set when accepted
@@ -38,6 +41,7 @@ class MessageGate {
 
   std::string self_;
   WireLimits limits_;
+  std::size_t max_senders_;
   // Per (sender, directed to us or broadcast): each travels in order on its
   // own topic, so each has its own sequence.
   std::map<std::pair<std::string, bool>, Stream> streams_;

@@ -53,5 +53,15 @@ TEST(MessageGate, IgnoresItsOwnEchoAndRefusesOthersMail) {
   EXPECT_EQ(gate.rejected(), 2u);
 }
 
+TEST(MessageGate, InventedSendersCannotGrowItsMemory) {
+  MessageGate gate("robot2", {}, 3);
+  for (int i = 0; i < 5; ++i) {
+    MessageStamper sender("robot" + std::to_string(10 + i), 1);
+    gate.admit(from(sender, "robot2"));
+  }
+  EXPECT_EQ(gate.accepted(), 3u);
+  EXPECT_EQ(gate.rejected_by_reason().at("too many senders"), 2u);
+}
+
 }  // namespace
 }  // namespace dsswarm::protocol

@@ -37,6 +37,19 @@ class InProcessPort : public protocol::AgentPort {
   const RelativePoseConfig& locate_;
 };
 
+// Why an event did not become an encounter, in words that group alike events.
+std::string skip_reason(const protocol::EncounterOutcome& x, const protocol::EncounterOutcome& y,
+                        const SwarmConfig& config) {
+  using D = protocol::EncounterOutcome::Decline;
+  const bool x_new = x.decline == D::no_scan, y_new = y.decline == D::no_scan;
+  if (x_new && y_new) return fmt::format("{} and {} had not started", x.self, y.self);
+  if (x_new || y_new) return fmt::format("{} had not started", x_new ? x.self : y.self);
+  if (x.decline == D::merging_off || y.decline == D::merging_off) return "merging is off";
+  if (x.decline == D::merged_recently || y.decline == D::merged_recently)
+    return fmt::format("{} and {} merged less than {} s before", x.self, y.self, config.remerge_interval);
+  return x.decline != D::by_peer ? x.reason : y.reason;
+}
+
 }  // namespace
 
 struct SwarmSession::Robot {
@@ -158,8 +171,7 @@ void SwarmSession::encounter(const EncounterEvent& e, std::uint64_t id) {
     throw std::logic_error("in-process encounter " + std::to_string(id) + " did not complete");
   using End = protocol::EncounterOutcome::End;
   if (ox->end == End::declined || oy->end == End::declined) {
-    const protocol::EncounterOutcome& why = ox->end == End::declined ? *ox : *oy;
-    skipped_.push_back(fmt::format("t={:.1f} s {}–{}: {}", e.time, ox->self, oy->self, why.reason));
+    skipped_.push_back(skip_reason(*ox, *oy, config_));
     return;
   }
   records_.push_back(ox->self_is_a ? make_record(*ox, *oy, e.time) : make_record(*oy, *ox, e.time));

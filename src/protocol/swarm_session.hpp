@@ -69,7 +69,8 @@ class SwarmSession {
   const SwarmAgent& agent(std::size_t i) const { return *agents_[i]; }
   const AgentTrack& track(std::size_t i) const { return tracks_[i]; }
   const std::vector<EncounterRecord>& encounters() const { return records_; }
-  // Events that did not become encounters, and why (one line each).
+  // Events that did not become encounters, and why (one line each, alike
+  // events alike: "robot2 had not started").
   std::size_t events_skipped() const { return skipped_.size(); }
   const std::vector<std::string>& skipped() const { return skipped_; }
   const SwarmConfig& config() const { return config_; }

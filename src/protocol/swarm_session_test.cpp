@@ -94,6 +94,7 @@ TEST(SwarmSession, AnEncounterBeforeARobotStartsIsSkipped) {
   session.run();
   EXPECT_TRUE(session.encounters().empty());
   EXPECT_EQ(session.events_skipped(), 1u);
+  EXPECT_EQ(session.skipped().at(0), "b had not started");
   EXPECT_EQ(session.track(1).steps.size(), 30u);  // and b still plays all its scans
 }
 

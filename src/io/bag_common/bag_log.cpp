@@ -106,10 +106,15 @@ void attach_odometry(const RawBag& bag, const std::vector<double>& scan_stamps,
           ? fmt::format("/tf ({} -> {})", bag::kOdomFrame, bag::kBaseFrame)
           : options.odom_topic;
   if (bag.odom.empty()) {
-    const bool hint_tf = !options.use_tf_odometry && find_topic(bag, "/tf") != nullptr;
-    log.warnings.push_back(
-        fmt::format("{}: no odometry on {}: running without odometry{}", file, source,
-                    hint_tf ? " (the bag has /tf: try the tf odometry option)" : ""));
+    // The option names are the CLI's: what a user who mistyped the topic needs to read.
+    const std::string hint =
+        options.use_tf_odometry ? ""
+                                : fmt::format("; {} (--odom-topic names the odometry topic, --tf-odometry takes "
+                                              "odometry from /tf)",
+                                              describe_topics(bag));
+    if (options.odom_topic_named && !options.use_tf_odometry && find_topic(bag, options.odom_topic) == nullptr)
+      throw InputError(fmt::format("{}: no odometry topic {}{}", file, options.odom_topic, hint));
+    log.warnings.push_back(fmt::format("{}: no odometry on {}: running without odometry{}", file, source, hint));
     return;
   }
 
@@ -166,8 +171,17 @@ SensorLog sensor_log_from_bag(const RawBag& bag, const std::string& file,
   SensorLog log;
   log.source = file;
   log.scans.reserve(bag.scans.size());
+  std::size_t negative = 0;
   for (std::size_t i = 0; i < bag.scans.size(); ++i) {
     log.scans.push_back(to_laser_scan(bag.scans[i], i, file, options.scan_topic));
+    const std::vector<float>& r = log.scans.back().ranges;
+    negative += static_cast<std::size_t>(
+        std::count_if(r.begin(), r.end(), [](float v) { return std::isfinite(v) && v < 0.0F; }));
+  }
+  // NaN and inf are REP 117's "no reading" and "no return": only negative ranges are odd.
+  if (negative > 0) {
+    log.warnings.push_back(fmt::format(
+        "{}: {} range readings are negative (kept; they count as invalid beams)", file, negative));
   }
 
   if (bag.zero_header_stamps > 0) {

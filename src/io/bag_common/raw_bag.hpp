@@ -15,6 +15,9 @@ struct BagReadOptions {
   std::string scan_topic = "/scan";
   std::string odom_topic = "/odom";
   bool use_tf_odometry = false;  // odom -> base_link on /tf instead of odom_topic
+  // The user named odom_topic (a typo is likely): its absence from the bag is
+  // an InputError, not a warning.
+  bool odom_topic_named = false;
 };
 
 namespace bag {

@@ -26,7 +26,7 @@ bool is_bag(const std::filesystem::path& path) {
 }  // namespace
 
 SensorLog read_log(const std::filesystem::path& path, const LogReadOptions& options) {
-  const BagReadOptions bag{options.scan_topic, options.odom_topic, options.use_tf_odometry};
+  const BagReadOptions bag{options.scan_topic, options.odom_topic, options.use_tf_odometry, options.odom_topic_named};
   if (is_rosbag2_path(path)) return read_rosbag2(path, bag);
   if (is_bag(path)) {
 #ifdef DSSWARM_LOGS_READ_BAGS

@@ -15,6 +15,7 @@ struct LogReadOptions {
   std::string scan_topic = "/scan";  // ROS bags only
   std::string odom_topic = "/odom";  // ROS bags only
   bool use_tf_odometry = false;      // ROS bags only: odometry from /tf instead of the odom topic
+  bool odom_topic_named = false;     // ROS bags only: the user named odom_topic (absent = error)
 };
 
 // Dispatches on the path: a folder or `.db3`/`.mcap` is a ROS 2 bag, `.bag`

@@ -70,6 +70,11 @@ std::string yaml_float(double v) {
   return s;
 }
 
+// Origins are whole cells times the resolution, which binary floating point
+// misses by an ulp (-224 * 0.05 = -11.200000000000001): rounded to a
+// nanometre, far below any cell, they print as the number meant.
+std::string yaml_coordinate(double v) { return yaml_float(std::round(v * 1e9) / 1e9); }
+
 // The file name as a YAML scalar, quoted only if it has to be.
 std::string yaml_string(const std::string& s) {
   YAML::Emitter emitter;
@@ -221,6 +226,13 @@ void check_map_server_options(const MapServerOptions& o) {
 }
 
 void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const MapServerOptions& options) {
+  OutputFiles files;
+  add_map_server(files, yaml_path, raster, options);
+  for (const OutputFiles::File& f : files.files()) write_file_atomically(f.path, f.contents);  // image first
+}
+
+void add_map_server(OutputFiles& files, const fs::path& yaml_path, const GridRaster& raster,
+                    const MapServerOptions& options) {
   check_map_server_options(options);
   check_raster(raster, yaml_path);
   const std::string image_name = yaml_path.stem().string() + ".pgm";
@@ -238,13 +250,13 @@ void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const
       "negate: {}\n"
       "occupied_thresh: {}\n"
       "free_thresh: {}\n",
-      yaml_string(image_name), yaml_float(raster.resolution), yaml_float(raster.origin.x()),
-      yaml_float(raster.origin.y()), options.negate ? 1 : 0, yaml_float(options.occupied_thresh),
+      yaml_string(image_name), yaml_float(raster.resolution), yaml_coordinate(raster.origin.x()),
+      yaml_coordinate(raster.origin.y()), options.negate ? 1 : 0, yaml_float(options.occupied_thresh),
       yaml_float(options.free_thresh));
 
   // Image first: a YAML that exists always points at a complete picture.
-  write_file_atomically(pgm_path, encode_pgm(raster, options));
-  write_file_atomically(yaml_path, yaml);
+  files.add(pgm_path, encode_pgm(raster, options));
+  files.add(yaml_path, yaml);
 }
 
 LoadedMap read_map_server(const fs::path& yaml_path) {

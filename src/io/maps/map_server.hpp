@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "grid/grid_raster.hpp"
+#include "io/atomic_file.hpp"
 
 namespace dsswarm {
 
@@ -40,6 +41,11 @@ void check_map_server_options(const MapServerOptions& options);
 // InputError for an empty or inconsistent raster or a file that cannot be written.
 void write_map_server(const std::filesystem::path& yaml_path, const GridRaster& raster,
                       const MapServerOptions& options = {});
+
+// The same two files added to `files` (image first), to be written with the
+// command's other outputs. The same errors, before anything is written.
+void add_map_server(OutputFiles& files, const std::filesystem::path& yaml_path, const GridRaster& raster,
+                    const MapServerOptions& options = {});
 
 struct LoadedMap {
   // Masses reconstructed from the classes: occupied → {1, 0}, free → {0, 1},

@@ -21,7 +21,8 @@ using RosbagOptions = BagReadOptions;
 // Throws InputError naming the file for a missing file, a file that is not a
 // readable ROS1 bag (corrupt, truncated, not a bag), a scan topic that is
 // absent (the message lists the bag's topics and types) or carries no scans,
-// a topic of the wrong message type, and non-finite scan geometry or poses.
+// a topic of the wrong message type, an odometry topic that is absent when
+// `odom_topic_named`, and non-finite scan geometry or poses.
 // Quirks handled (stamps running backwards, missing odometry or laser offset,
 // scans outside the odometry span) are reported in SensorLog::warnings.
 SensorLog read_rosbag(const std::filesystem::path& path, const RosbagOptions& options = {});
