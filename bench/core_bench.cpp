@@ -1,56 +1,123 @@
-// Throughput of the hot paths on a simulated building: scan insertion, pose
-// scoring and a whole match. Run: build/bench/core_bench
+// Micro-benchmarks of the per-scan hot paths, on the fixed input of
+// bench_fixture.hpp (the map of the demo robot's first 300 scans, scan 300).
+// Run: build/bench/core_bench [--benchmark_filter=REGEX]
 #include <benchmark/benchmark.h>
 
+#include <array>
+
+#include "bench_fixture.hpp"
+#include "common/rng.hpp"
+#include "filter/scan_histogram.hpp"
+#include "grid/ray_traversal.hpp"
 #include "matching/monte_carlo_matcher.hpp"
 #include "matching/scan_scorer.hpp"
-#include "sim/scenario.hpp"
-#include "slam/slam.hpp"
 
-namespace dsswarm {
+namespace dsswarm::bench {
 namespace {
 
-// A map built from the first 300 scans of the demo run, and the next scan.
-struct Fixture {
-  SimulatedRun run = simulate_demo(DemoConfig{});
-  Slam slam;
-  std::vector<ScanPoint> points;
-  Pose2 pose;
-  Fixture() {
-    for (int i = 0; i < 300; ++i) pose = slam.process(run.log.scans[static_cast<std::size_t>(i)]).pose;
-    points = scan_to_points(run.log.scans[300]);
+// Dempster's rule on 4096 pairs of valid masses, as a map merge combines cells.
+void BM_DempsterCombine(benchmark::State& state) {
+  constexpr std::size_t kCells = 4096;
+  std::vector<DsMass> a(kCells), b(kCells), out(kCells);
+  Rng rng(3);
+  for (std::size_t i = 0; i < kCells; ++i) {
+    const float oa = static_cast<float>(rng.uniform(0.0, 0.6)), ob = static_cast<float>(rng.uniform(0.0, 0.6));
+    a[i] = {oa, static_cast<float>(rng.uniform(0.0, 0.98 - oa))};
+    b[i] = {ob, static_cast<float>(rng.uniform(0.0, 0.98 - ob))};
   }
-};
-
-Fixture& fixture() {
-  static Fixture f;
-  return f;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < kCells; ++i) out[i] = combine(a[i], b[i]);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kCells));
 }
+BENCHMARK(BM_DempsterCombine);
 
-void BM_ScorePose(benchmark::State& state) {
-  Fixture& f = fixture();
-  for (auto _ : state) benchmark::DoNotOptimize(score_pose(f.slam.map().finest(), f.points, f.pose));
+// The cells every beam of one scan crosses on the finest level, without updating them.
+void BM_TraverseRays(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const double resolution = f.slam.map().config().resolution;
+  std::int64_t cells = 0;
+  for (auto _ : state) {
+    for (const ScanPoint& p : f.points)
+      traverse_ray(f.pose.translation(), f.pose * Eigen::Vector2d(p.x, p.y), resolution,
+                   [&cells](CellIndex c) { benchmark::DoNotOptimize(cells += c.x & 1); });
+  }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(f.points.size()));
 }
-BENCHMARK(BM_ScorePose);
+BENCHMARK(BM_TraverseRays);
 
+// One scan inserted into the mapped area (all levels: traversal, Dempster
+// updates, surfaces); the tiles already exist, as they mostly do in SLAM.
 void BM_InsertScan(benchmark::State& state) {
-  Fixture& f = fixture();
-  MultiResMap map;  // repeated insertion of one scan: the cost of the beam traversal and updates
-  for (auto _ : state) map.insert_scan(f.pose, Pose2(), f.points);
+  const Fixture& f = fixture();
+  MultiResMap map = f.slam.map();
+  for (auto _ : state) map.insert_scan(f.pose, f.scan.laser_offset, f.points);
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_InsertScan);
 
+// The same into an empty map each time: tile allocation included.
+void BM_InsertScanNewMap(benchmark::State& state) {
+  const Fixture& f = fixture();
+  for (auto _ : state) {
+    MultiResMap map(f.slam.map().config());
+    map.insert_scan(f.pose, f.scan.laser_offset, f.points);
+    benchmark::DoNotOptimize(map.cells_allocated());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_InsertScanNewMap);
+
+// One pose evaluation as the matcher makes it (score_pose with the matcher's
+// unknown_value) on level 0 (every point) and level 2 (every 4th point).
+void BM_ScorePose(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const int level = static_cast<int>(state.range(0));
+  const std::size_t stride = std::size_t{1} << level;
+  const float unknown_value = MatcherConfig{}.unknown_value;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(score_pose(f.slam.map().level(level), f.points, f.pose, stride, unknown_value));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(f.points.size() / stride));
+}
+BENCHMARK(BM_ScorePose)->Arg(0)->Arg(2);
+
+// One whole match with the default budget (240 evaluations over 3 levels).
 void BM_MatchScan(benchmark::State& state) {
-  Fixture& f = fixture();
-  MonteCarloMatcher matcher;
-  for (auto _ : state) benchmark::DoNotOptimize(matcher.match(f.slam.map(), f.points, f.pose));
+  const Fixture& f = fixture();
+  for (auto _ : state) {
+    MonteCarloMatcher matcher(MatcherConfig{}, 1);  // same seed each time: the same search
+    benchmark::DoNotOptimize(matcher.match(f.slam.map(), f.points, f.pose));
+  }
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_MatchScan);
 
+// The scan filter's per-scan summary and its comparison with one kept scan.
+void BM_FilterHistogram(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const HistogramSpec spec{default_column_count(f.scan.ranges.size())};
+  for (auto _ : state) benchmark::DoNotOptimize(scan_histogram(f.scan, spec));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FilterHistogram);
+
+void BM_FilterCorrelation(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const HistogramSpec spec{default_column_count(f.scan.ranges.size())};
+  const std::vector<double> a = scan_histogram(f.scan, spec);
+  const std::vector<double> b = scan_histogram(f.run.log.scans[kMapScans - 1], spec);
+  for (auto _ : state) benchmark::DoNotOptimize(pearson_correlation(a, b));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FilterCorrelation);
+
+// Loop-closure search (src/slam, branch `graph`): its benchmark goes here
+// when that lands, on the same fixture (a candidate scan against the map of
+// the first kMapScans scans), so that it compares with BM_MatchScan.
+
 }  // namespace
-}  // namespace dsswarm
+}  // namespace dsswarm::bench
 
 BENCHMARK_MAIN();

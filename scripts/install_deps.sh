@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages dsswarm needs, only those missing (idempotent).
+# Extra package names given as arguments are installed the same way (the
+# measurement scripts' own tools: bench/compare.sh, scripts/arm64_test.sh).
+# apt may never remove a package to make room (--no-remove): a conflict stops.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -9,6 +12,7 @@ packages=(
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
   cyclonedds-dev cyclonedds-tools libssl-dev
   clang libclang-rt-14-dev llvm  # sanitizer build + libFuzzer; llvm-symbolizer for readable reports
+  "$@"
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -22,4 +26,4 @@ sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+$sudo apt-get install -y -qq --no-install-recommends --no-remove "${missing[@]}" >/dev/null

@@ -31,6 +31,8 @@ struct RunArgs {
   std::string save_map;    // .dsmap written at the end (the robot's own map)
   std::string load_map;    // .dsmap to continue mapping in
   std::vector<double> start_pose;  // x y theta in the loaded map's frame
+  std::size_t max_scans = 0;       // only the first N scans, 0: all (benchmarks, profiling)
+  bool no_images = false;          // trajectory and stats only
   SlamOptions slam;
 };
 
@@ -52,10 +54,11 @@ void run(const RunArgs& a) {
     for (const auto& w : continued->warnings) spdlog::warn("{}", w);
     fmt::print("loaded map {}: {}\n", a.load_map, continued->description);
   }
-  const std::optional<Pose2> start_pose =
-      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(pose_option(a.start_pose, "--start-pose"));
-  const std::optional<Pose2> laser_offset =
-      a.laser_offset.empty() ? std::nullopt : std::optional<Pose2>(pose_option(a.laser_offset, "--laser-offset"));
+  // Filled in place, not copied from a temporary: GCC 12 for aarch64 warns
+  // maybe-uninitialized on the optional<Pose2> copy (a false positive).
+  std::optional<Pose2> start_pose, laser_offset;
+  if (!a.start_pose.empty()) start_pose.emplace(pose_option(a.start_pose, "--start-pose"));
+  if (!a.laser_offset.empty()) laser_offset.emplace(pose_option(a.laser_offset, "--laser-offset"));
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
@@ -73,13 +76,14 @@ void run(const RunArgs& a) {
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
   require_returns(log);
+  if (a.max_scans > 0 && log.scans.size() > a.max_scans) log.scans.resize(a.max_scans);
 
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same
   // start) starts there by default.
   std::unique_ptr<Slam> slam;
   if (continued) {
-    const Pose2 start = start_pose.value_or(log.scans.front().odometry.value_or(Pose2()));
+    const Pose2 start = start_pose ? *start_pose : log.scans.front().odometry.value_or(Pose2());
     slam = std::make_unique<Slam>(config, std::move(continued->map), start);
   } else {
     slam = std::make_unique<Slam>(config);
@@ -87,7 +91,7 @@ void run(const RunArgs& a) {
   const RunResult result = run_slam(log, *slam);
   nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
   if (!a.load_map.empty()) stats["load_map"] = a.load_map;
-  OutputFiles files = run_output_files(a.out, result, *slam, stats);
+  OutputFiles files = run_output_files(a.out, result, *slam, stats, nullptr, !a.no_images);
   if (!a.save_map.empty()) {
     const std::vector<std::uint8_t> map =
         encode_dsmap(own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
@@ -121,6 +125,9 @@ void add_run_command(CLI::App& app) {
                   "default: the first scan's odometry pose")
       ->expected(3)
       ->needs(load);
+  cmd->add_option("--max-scans", args->max_scans, "Process only the first N scans of the log")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-images", args->no_images, "Write trajectory.tum and stats.json only (no map.pgm/.yaml/.png)");
   add_slam_options(*cmd, args->slam);
   cmd->callback([args, odom_topic] {
     args->odom_topic_named = odom_topic->count() > 0;

@@ -83,12 +83,16 @@ void require_returns(const SensorLog& log) {
 }
 
 OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
-                             const nlohmann::json& stats, const Trajectory* ground_truth) {
+                             const nlohmann::json& stats, const Trajectory* ground_truth, bool images) {
   const GridRaster raster = slam.map().finest().to_raster();
   if (raster.width == 0)
     throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
   OutputFiles files;
   files.add(dir / "trajectory.tum", format_tum(dir / "trajectory.tum", result.trajectory));
+  if (!images) {
+    files.add(dir / "stats.json", stats.dump(2) + "\n");
+    return files;
+  }
   add_map_server(files, dir / "map.yaml", raster);
   Image picture = render_map(raster, fitting_scale(raster));
   auto path_of = [](const Trajectory& t) {

@@ -38,9 +38,11 @@ void require_returns(const SensorLog& log);
 
 // trajectory.tum, map.pgm + map.yaml (ROS map_server), map.png (map with the
 // trajectory, and `ground_truth` in another colour if given), stats.json, in
-// memory: InputError if the map is empty, before anything is written.
+// memory (without `images`, trajectory.tum and stats.json only): InputError if
+// the map is empty, before anything is written.
 OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
-                             const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
+                             const nlohmann::json& stats, const Trajectory* ground_truth = nullptr,
+                             bool images = true);
 
 // Writes run_output_files (all of them or none); the directory is created if needed.
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
