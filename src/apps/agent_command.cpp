@@ -45,6 +45,7 @@ struct AgentArgs {
   int sim_robot = 1, sim_robots = 3;
   std::uint64_t world_seed = 1;
   double proximity_range = 3.0;
+  double duration = 0.0;  // s of the simulated run (0: all)
   double rate = 1.0;
   std::size_t queue = 8;  // scans waiting for SLAM; the oldest are skipped beyond
   std::optional<double> start_at;  // unix time of clock 0 (launch starts robots together)
@@ -146,7 +147,7 @@ void run_agent(const AgentArgs& a) {
   const auto start_at = start_time(a.start_at);
   const agent::PacedFeedConfig paced{.rate = a.rate, .queue_capacity = a.queue, .start_at = start_at};
   if (a.sim_seed) {
-    SimSwarmRun sim = simulate_swarm_run({a.sim_robots, *a.sim_seed, a.world_seed, a.proximity_range});
+    SimSwarmRun sim = simulate_swarm_run({a.sim_robots, *a.sim_seed, a.world_seed, a.proximity_range, a.duration});
     o.swarm.encounter.locate.search_radius = a.proximity_range;
     const std::size_t k = static_cast<std::size_t>(a.sim_robot - 1);
     if (sim.streams[k].name != a.name)
@@ -218,6 +219,8 @@ void add_agent_command(CLI::App& app) {
   cmd->add_option("--robots", args->sim_robots, "With --sim: robots in the simulated swarm")->capture_default_str();
   cmd->add_option("--world-seed", args->world_seed, "With --sim: seed of the generated building")->capture_default_str();
   cmd->add_option("--proximity-range", args->proximity_range, "With --sim: proximity sensor range (m)")
+      ->capture_default_str();
+  cmd->add_option("--duration", args->duration, "With --sim: seconds of the simulated run to play (0: all of it)")
       ->capture_default_str();
   cmd->add_option("--rate", args->rate, "With --log/--sim: playback speed factor")->capture_default_str();
   cmd->add_option("--queue", args->queue, "Scans that may wait for SLAM; beyond, the oldest are skipped (counted)")

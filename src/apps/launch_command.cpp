@@ -39,6 +39,7 @@ struct LaunchArgs {
   int robots = 3;
   std::uint64_t world_seed = 1;
   double proximity_range = 3.0;
+  double duration = 0.0;  // s of the simulated run (0: all)
   std::string out;
   double rate = 1.0;
   bool no_security = false;
@@ -62,7 +63,7 @@ Plan make_plan(const LaunchArgs& a) {
   Plan p;
   SlamOptions slam = a.slam;
   if (a.sim_seed) {
-    SimSwarmRun sim = simulate_swarm_run({a.robots, *a.sim_seed, a.world_seed, a.proximity_range});
+    SimSwarmRun sim = simulate_swarm_run({a.robots, *a.sim_seed, a.world_seed, a.proximity_range, a.duration});
     p.streams = std::move(sim.streams);
     p.events = std::move(sim.events);
     p.truth = std::move(sim.truth);
@@ -159,7 +160,7 @@ class Launch {
     if (a_.sim_seed)
       argv.insert(argv.end(), {"--sim", std::to_string(*a_.sim_seed), "--robot", std::to_string(k + 1), "--robots",
                                std::to_string(a_.robots), "--world-seed", std::to_string(a_.world_seed),
-                               "--proximity-range", text(a_.proximity_range), "--rate", text(a_.rate), "--start-at",
+                               "--proximity-range", text(a_.proximity_range), "--duration", text(a_.duration), "--rate", text(a_.rate), "--start-at",
                                fmt::format("{:.6f}", start_at), "--linger", text(a_.settle)});
     agents_.push_back(group_.start(argv, out_ / "logs" / (name + ".log")));
   }
@@ -269,6 +270,8 @@ void add_launch_command(CLI::App& app) {
   cmd->add_option("--robots", args->robots, "With --sim: robots")->check(CLI::Range(1, 16))->capture_default_str();
   cmd->add_option("--world-seed", args->world_seed, "With --sim: seed of the building")->capture_default_str();
   cmd->add_option("--proximity-range", args->proximity_range, "With --sim: proximity sensor range (m)")
+      ->capture_default_str();
+  cmd->add_option("--duration", args->duration, "With --sim: seconds of the simulated run to play (0: all of it)")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory")->required();
   cmd->add_option("--rate", args->rate, "Playback speed factor (1 = real time)")->capture_default_str();
