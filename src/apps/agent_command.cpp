@@ -116,6 +116,18 @@ AgentStream log_stream(const AgentArgs& a) {
   return s;
 }
 
+// A robot of a launch that comes up after the common clock 0 has missed its
+// first scans: its map frame starts where it then was (not where its peers
+// and the evaluation expect).
+void warn_if_late(const std::string& name, const std::optional<std::chrono::system_clock::time_point>& start_at) {
+  if (!start_at) return;
+  const double late = std::chrono::duration<double>(std::chrono::system_clock::now() - *start_at).count();
+  if (late > 0.5)
+    spdlog::warn("{}: ready {:.1f} s after clock 0 (--start-at): the scans played before are missed (counted as "
+                 "skipped beyond the queue); `launch --startup` gives the robots longer",
+                 name, late);
+}
+
 void check(const AgentArgs& a) {
   const int sources = (a.log.empty() ? 0 : 1) + (a.sim_seed ? 1 : 0);
   if (sources > 1) throw ConfigError("--log and --sim are alternatives: give one (or neither, for live ROS 2 topics)");
@@ -188,6 +200,7 @@ void run_agent(const AgentArgs& a) {
       if (!finished) net.maintain();
     }
   });
+  warn_if_late(a.name, start_at);
   runtime.run(StopOnSignal::requested());
   finished = true;
   upkeep.join();

@@ -52,6 +52,7 @@ struct LaunchArgs {
 // What the launch plays: robot names, their streams (for timing and the
 // proximity schedule), and, simulated, the truth.
 struct Plan {
+  double simulate_seconds = 0.0;  // --sim: what simulating the swarm took here (each robot process does it again)
   std::vector<AgentStream> streams;
   std::vector<EncounterEvent> events;
   std::optional<SwarmTruth> truth;
@@ -63,7 +64,9 @@ Plan make_plan(const LaunchArgs& a) {
   Plan p;
   SlamOptions slam = a.slam;
   if (a.sim_seed) {
+    const auto t0 = Clock::now();
     SimSwarmRun sim = simulate_swarm_run({a.robots, *a.sim_seed, a.world_seed, a.proximity_range, a.duration});
+    p.simulate_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     p.streams = std::move(sim.streams);
     p.events = std::move(sim.events);
     p.truth = std::move(sim.truth);
@@ -100,6 +103,8 @@ class Launch {
  public:
   Launch(const LaunchArgs& a, Plan plan) : a_(a), plan_(std::move(plan)), out_(a.out), exe_(fs::read_symlink("/proc/self/exe")) {
     std::tie(swarm_domain_, ros_domain_) = domains(a);
+    startup_ = launch_startup_seconds(a.startup, plan_.simulate_seconds, plan_.streams.size(),
+                                      std::thread::hardware_concurrency());
     fs::create_directories(out_ / "logs");
     write_file_atomically(out_ / "config.json", to_json(plan_.config).dump(2) + "\n");
     if (!a.no_security) make_keys();
@@ -107,16 +112,17 @@ class Launch {
 
   // Starts everything, waits for the run to end, stops what still runs.
   void run() {
-    const double start_at = unix_now() + a_.startup;
+    const double start_at = unix_now() + startup_;
     for (std::size_t k = 0; k < plan_.streams.size(); ++k) start_agent(k, start_at);
     if (!a_.sim_seed) {
       for (const AgentStream& s : plan_.streams) start_replay(s.name, start_at);
       if (!plan_.events.empty()) proximity_ = group_.start(proximity_argv(start_at), out_ / "logs" / "proximity.log");
     }
-    const double run_seconds = a_.startup + seconds_of(plan_) / a_.rate;
-    fmt::print(stderr, "launch: {} robot process(es){}, about {:.0f} s; logs in {}\n", plan_.streams.size(),
-               a_.sim_seed ? "" : fmt::format(" + {} replay(s) + proximity", plan_.streams.size()), run_seconds,
-               (out_ / "logs").string());
+    const double run_seconds = startup_ + seconds_of(plan_) / a_.rate;
+    fmt::print(stderr, "launch: {} robot process(es){}, clocks start in {:.0f} s, about {:.0f} s; logs in {}\n",
+               plan_.streams.size(),
+               a_.sim_seed ? "" : fmt::format(" + {} replay(s) + proximity", plan_.streams.size()), startup_,
+               run_seconds, (out_ / "logs").string());
     wait_for_the_end(run_seconds);
   }
 
@@ -169,7 +175,7 @@ class Launch {
     replays_.push_back(group_.start({exe_.string(), "replay", "--scenario", a_.scenario, "--agent", name,
                                      "--namespace", "/" + name, "--domain", std::to_string(ros_domain_), "--interface",
                                      "lo", "--rate", text(a_.rate), "--start-at", fmt::format("{:.6f}", start_at),
-                                     "--wait-for-subscribers", "1", "--wait-timeout", text(a_.startup + 60.0)},
+                                     "--wait-for-subscribers", "1", "--wait-timeout", text(startup_ + 60.0)},
                                     out_ / "logs" / ("replay_" + name + ".log")));
   }
 
@@ -216,6 +222,7 @@ class Launch {
   fs::path out_;
   fs::path exe_;
   int swarm_domain_ = 0, ros_domain_ = 0;
+  double startup_ = 0.0;
   ProcessGroup group_;
   std::vector<std::size_t> agents_, replays_;
   std::optional<std::size_t> proximity_;
@@ -260,6 +267,13 @@ void run_launch(const LaunchArgs& a) {
 
 }  // namespace
 
+double launch_startup_seconds(double requested, double simulate_seconds, std::size_t processes, unsigned cores) {
+  constexpr double kBusyMachine = 3.0;  // × the time an idle machine would take
+  constexpr double kComeUp = 2.0;       // s: DDS participants, security handshakes
+  const double rounds = std::ceil(static_cast<double>(processes) / static_cast<double>(std::max(1u, cores)));
+  return std::max(requested, kComeUp + kBusyMachine * simulate_seconds * rounds);
+}
+
 void add_launch_command(CLI::App& app) {
   auto args = std::make_shared<LaunchArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -278,7 +292,8 @@ void add_launch_command(CLI::App& app) {
   cmd->add_flag("--no-security", args->no_security, "Swarm topics without DDS Security (default: a fresh swarm CA)");
   cmd->add_option("--swarm-domain", args->swarm_domain, "DDS domain of the swarm (default: one of this run's own)");
   cmd->add_option("--ros-domain", args->ros_domain, "DDS domain of the robots' ROS 2 topics (default: the next one)");
-  cmd->add_option("--startup", args->startup, "Seconds for the processes to start before the clocks do")
+  cmd->add_option("--startup", args->startup,
+                  "Seconds for the processes to start before the clocks do (--sim: more if simulating takes long)")
       ->capture_default_str();
   cmd->add_option("--settle", args->settle, "Seconds after the last scan for the last encounters")
       ->capture_default_str();
