@@ -117,8 +117,7 @@ AgentStream log_stream(const AgentArgs& a) {
 }
 
 // A robot of a launch that comes up after the common clock 0 has missed its
-// first scans: its map frame starts where it then was (not where its peers
-// and the evaluation expect).
+// first scans: its map starts from odometry that has drifted meanwhile.
 void warn_if_late(const std::string& name, const std::optional<std::chrono::system_clock::time_point>& start_at) {
   if (!start_at) return;
   const double late = std::chrono::duration<double>(std::chrono::system_clock::now() - *start_at).count();

@@ -166,8 +166,9 @@ class Launch {
     if (a_.sim_seed)
       argv.insert(argv.end(), {"--sim", std::to_string(*a_.sim_seed), "--robot", std::to_string(k + 1), "--robots",
                                std::to_string(a_.robots), "--world-seed", std::to_string(a_.world_seed),
-                               "--proximity-range", text(a_.proximity_range), "--duration", text(a_.duration), "--rate", text(a_.rate), "--start-at",
-                               fmt::format("{:.6f}", start_at), "--linger", text(a_.settle)});
+                               "--proximity-range", text(a_.proximity_range), "--duration", text(a_.duration),
+                               "--rate", text(a_.rate), "--start-at", fmt::format("{:.6f}", start_at), "--linger",
+                               text(a_.settle)});
     agents_.push_back(group_.start(argv, out_ / "logs" / (name + ".log")));
   }
 

@@ -12,7 +12,8 @@ void add_launch_command(CLI::App& app);
 // with --sim enough for each of them to simulate the whole swarm first (it
 // took this launch `simulate_seconds`), `processes` of them sharing `cores`,
 // with a margin for a machine busy with other work. A process that comes up
-// after clock 0 never sees its first scans, and its map frame starts later.
+// after clock 0 never sees its first scans: its map starts from odometry that
+// drifted meanwhile, and its transforms to the others' maps are off by that.
 double launch_startup_seconds(double requested, double simulate_seconds, std::size_t processes, unsigned cores);
 
 }  // namespace dsswarm
