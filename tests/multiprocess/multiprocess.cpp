@@ -7,10 +7,12 @@
 #include <deque>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <thread>
 
 #include "net/net_test_util.hpp"
+#include "protocol/wire.hpp"
 
 namespace dsswarm::mp {
 
@@ -34,6 +36,10 @@ Rig::~Rig() {
 std::size_t Rig::start(const std::string& log, const std::vector<std::string>& args) {
   std::vector<std::string> argv{DSSWARM_CLI};
   argv.insert(argv.end(), args.begin(), args.end());
+  return start_raw(log, argv);
+}
+
+std::size_t Rig::start_raw(const std::string& log, const std::vector<std::string>& argv) {
   if (std::find(logs_.begin(), logs_.end(), log) == logs_.end()) logs_.push_back(log);  // a log reused: appended
   return group_.start(argv, dir_ / "logs" / (log + ".log"));
 }
@@ -66,7 +72,7 @@ std::vector<std::string> agent_args(const SimAgent& a) {
   std::vector<std::string> args{"agent", "--name", a.name, "--out", a.out.string(), "--sim", "1", "--robot",
                                 std::to_string(a.robot), "--robots", std::to_string(a.robots), "--rate",
                                 fmt::format("{}", a.rate), "--start-at", fmt::format("{:.6f}", a.start_at),
-                                "--interface", "lo", "--no-ros-output"};
+                                "--interface", a.interface, "--no-ros-output"};
   if (a.keys.empty()) {
     args.insert(args.end(), {"--swarm-domain", std::to_string(a.domain)});
   } else {
@@ -78,6 +84,66 @@ std::vector<std::string> agent_args(const SimAgent& a) {
 
 double unix_in(double seconds) {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + seconds;
+}
+
+namespace {
+
+net::ParticipantConfig loopback(int domain) {
+  net::ParticipantConfig c;
+  c.domain_id = static_cast<std::uint32_t>(domain);
+  c.interface = "lo";
+  return c;
+}
+
+net::SwarmLinkConfig tap_config(const std::string& partition, const std::string& name) {
+  net::SwarmLinkConfig c;
+  c.name = name;
+  c.partition = partition;
+  return c;
+}
+
+}  // namespace
+
+SwarmTap::SwarmTap(int domain, const std::string& partition, const std::string& name)
+    : participant(loopback(domain)), link(participant, tap_config(partition, name)) {}
+
+bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until)
+    for (const std::vector<std::uint8_t>& bytes : tap.link.receive(100ms)) try {
+        const protocol::Message m = protocol::decode(bytes);
+        if (m.header.sender == robot && std::holds_alternative<protocol::Heartbeat>(m.body)) return true;
+      } catch (const protocol::ProtocolError&) {
+      }
+  return false;
+}
+
+std::vector<std::pair<std::string, std::vector<std::uint8_t>>> bad_messages(protocol::MessageStamper& mallory,
+                                                                            const std::string& victim) {
+  const auto valid = [&](protocol::Body body) { return protocol::encode(mallory.stamp(victim, std::move(body))); };
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> out;
+  out.push_back({"malformed", std::vector<std::uint8_t>(100, 0xff)});  // garbage
+  std::vector<std::uint8_t> cut = valid(protocol::Decline{9001, "cut short"});
+  cut.resize(cut.size() / 2);
+  out.push_back({"malformed", cut});  // truncated
+  protocol::Chunk huge{9002, 0, 1, 2u << 20, 0, std::vector<std::uint8_t>(2u << 20, 0xab)};
+  out.push_back({"malformed", valid(huge)});  // beyond the 1 MiB message limit
+  std::vector<std::uint8_t> version = valid(protocol::Decline{9003, "from the future"});
+  version[4] = 99;  // u16 protocol version after the magic
+  out.push_back({"malformed", version});
+  protocol::Offer nan_offer;
+  nan_offer.encounter = 9004;
+  nan_offer.pose = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+  out.push_back({"malformed", valid(nan_offer)});  // non-finite pose (checksum fine)
+  std::vector<std::uint8_t> flipped = valid(protocol::Decline{9005, "bit flip"});
+  flipped[flipped.size() / 2] ^= 0x10;
+  out.push_back({"malformed", flipped});  // checksum mismatch
+  out.push_back({"misdirected", protocol::encode(mallory.stamp("someone_else", protocol::Decline{9006, "not yours"}))});
+  const std::vector<std::uint8_t> once = valid(protocol::Decline{9007, "once"});
+  out.push_back({"", once});  // accepted (a decline of no open encounter: ignored)
+  out.push_back({"replayed", once});
+  out.push_back({"replayed", once});
+  return out;
 }
 
 nlohmann::json read_json(const fs::path& path) {

@@ -18,6 +18,8 @@
 
 #include "apps/process_group.hpp"
 #include "io/trajectory/tum.hpp"
+#include "net/swarm_link.hpp"
+#include "protocol/gate.hpp"
 
 namespace dsswarm::mp {
 
@@ -40,6 +42,8 @@ class Rig {
   const fs::path& dir() const { return dir_; }
   // Starts `dsswarm args...`, its output in dir()/logs/<log>.log.
   std::size_t start(const std::string& log, const std::vector<std::string>& args);
+  // Starts `argv` as it is (argv[0] a path), e.g. `ip netns exec NS dsswarm ...`.
+  std::size_t start_raw(const std::string& log, const std::vector<std::string>& argv);
   ProcessGroup& group() { return group_; }
   // The exit status, or a test failure (with the log's tail) after `timeout`.
   int wait(std::size_t process, std::chrono::milliseconds timeout);
@@ -62,6 +66,7 @@ struct SimAgent {
   double rate = 8.0;
   double start_at = 0.0;  // unix time of clock 0
   int domain = 0;
+  std::string interface = "lo";
   fs::path out;
   fs::path keys;                // secured swarm: the keys directory
   std::vector<std::string> extra;
@@ -70,6 +75,25 @@ std::vector<std::string> agent_args(const SimAgent& a);
 
 // Unix time `seconds` from now (the robots' common clock 0).
 double unix_in(double seconds);
+
+// A plain DDS participant of the test on the swarm topics of a partition
+// (net::swarm_partition(id); "" for a secured swarm's domain), loopback,
+// unsecured: `name`'s inbox and the heartbeats, as a robot would hear them
+// (DDS hands every matched reader its own copy), and sends to any robot.
+struct SwarmTap {
+  SwarmTap(int domain, const std::string& partition, const std::string& name);
+  net::Participant participant;
+  net::DdsSwarmLink link;
+};
+// Malformed, truncated, oversized, wrong-version, non-finite, corrupt,
+// misdirected and replayed messages for `victim` (and one valid one), each
+// with the reason its gate files it under ("" for the valid one). Sequences
+// continue `sender`'s: call again for another round.
+std::vector<std::pair<std::string, std::vector<std::uint8_t>>> bad_messages(protocol::MessageStamper& sender,
+                                                                            const std::string& victim);
+
+// Waits until a heartbeat from `robot` arrives on `tap`.
+bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::milliseconds timeout);
 
 nlohmann::json read_json(const fs::path& path);
 // Names of the origins of the layers a robot's stats.json says it holds.

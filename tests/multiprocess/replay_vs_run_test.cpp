@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <iterator>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 
 #include "eval/ate.hpp"
 #include "eval/relations.hpp"
@@ -69,7 +69,7 @@ class ReplayVsRun {
     const std::size_t agent =
         rig_.start("agent", {"agent", "--name", "robot1", "--out", out.string(), "--namespace", ns, "--ros-domain",
                              ros_domain, "--swarm-domain", swarm_domain, "--interface", "lo",
-                             "--no-ros-output", "--checkpoint-period", "1", "--queue", "10000"});
+                             "--no-ros-output", "--queue", "10000"});
     const std::size_t replay =
         rig_.start("replay", {"replay", log_.string(), "--namespace", ns, "--domain", ros_domain, "--interface", "lo",
                               "--rate", fmt::format("{}", rate), "--wait-for-subscribers", "1", "--wait-timeout", "60"});
@@ -113,9 +113,10 @@ class ReplayVsRun {
 // Replays `log` at `rate` into an agent named robot1 and compares its
 // trajectory with `run`'s. An agent seeds its matcher per robot (peers must
 // not draw the same numbers), so the reference is `run` with robot1's seed:
-// the same scans give the same trajectory, except that ROS messages round
-// poses through quaternions, and one ulp can tip a Monte-Carlo match, from
-// where on the two drift apart as runs with different seeds do. Matching
+// the same scans give the same trajectory, except that ROS messages carry
+// stamps in nanoseconds and headings as quaternions, an ulp can tip a
+// Monte-Carlo match, and from there on the two drift apart as runs with
+// different seeds do. Matching
 // noise is measured on the same log: `run` with two other seeds against the
 // reference; the agent must stay within the larger.
 void expect_replayed_like_run(Rig& rig, const fs::path& log, double rate) {
