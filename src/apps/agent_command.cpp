@@ -45,6 +45,7 @@ struct AgentArgs {
   int sim_robot = 1, sim_robots = 3;
   std::uint64_t world_seed = 1;
   double proximity_range = 3.0;
+  double duration = 0.0;  // s of the simulated run (0: all)
   double rate = 1.0;
   std::size_t queue = 8;  // scans waiting for SLAM; the oldest are skipped beyond
   std::optional<double> start_at;  // unix time of clock 0 (launch starts robots together)
@@ -115,6 +116,17 @@ AgentStream log_stream(const AgentArgs& a) {
   return s;
 }
 
+// A robot of a launch that comes up after the common clock 0 has missed its
+// first scans: its map starts from odometry that has drifted meanwhile.
+void warn_if_late(const std::string& name, const std::optional<std::chrono::system_clock::time_point>& start_at) {
+  if (!start_at) return;
+  const double late = std::chrono::duration<double>(std::chrono::system_clock::now() - *start_at).count();
+  if (late > 0.5)
+    spdlog::warn("{}: ready {:.1f} s after clock 0 (--start-at): the scans played before are missed (counted as "
+                 "skipped beyond the queue); `launch --startup` gives the robots longer",
+                 name, late);
+}
+
 void check(const AgentArgs& a) {
   const int sources = (a.log.empty() ? 0 : 1) + (a.sim_seed ? 1 : 0);
   if (sources > 1) throw ConfigError("--log and --sim are alternatives: give one (or neither, for live ROS 2 topics)");
@@ -146,7 +158,7 @@ void run_agent(const AgentArgs& a) {
   const auto start_at = start_time(a.start_at);
   const agent::PacedFeedConfig paced{.rate = a.rate, .queue_capacity = a.queue, .start_at = start_at};
   if (a.sim_seed) {
-    SimSwarmRun sim = simulate_swarm_run({a.sim_robots, *a.sim_seed, a.world_seed, a.proximity_range});
+    SimSwarmRun sim = simulate_swarm_run({a.sim_robots, *a.sim_seed, a.world_seed, a.proximity_range, a.duration});
     o.swarm.encounter.locate.search_radius = a.proximity_range;
     const std::size_t k = static_cast<std::size_t>(a.sim_robot - 1);
     if (sim.streams[k].name != a.name)
@@ -187,6 +199,7 @@ void run_agent(const AgentArgs& a) {
       if (!finished) net.maintain();
     }
   });
+  warn_if_late(a.name, start_at);
   runtime.run(StopOnSignal::requested());
   finished = true;
   upkeep.join();
@@ -218,6 +231,8 @@ void add_agent_command(CLI::App& app) {
   cmd->add_option("--robots", args->sim_robots, "With --sim: robots in the simulated swarm")->capture_default_str();
   cmd->add_option("--world-seed", args->world_seed, "With --sim: seed of the generated building")->capture_default_str();
   cmd->add_option("--proximity-range", args->proximity_range, "With --sim: proximity sensor range (m)")
+      ->capture_default_str();
+  cmd->add_option("--duration", args->duration, "With --sim: seconds of the simulated run to play (0: all of it)")
       ->capture_default_str();
   cmd->add_option("--rate", args->rate, "With --log/--sim: playback speed factor")->capture_default_str();
   cmd->add_option("--queue", args->queue, "Scans that may wait for SLAM; beyond, the oldest are skipped (counted)")

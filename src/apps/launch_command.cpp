@@ -39,6 +39,7 @@ struct LaunchArgs {
   int robots = 3;
   std::uint64_t world_seed = 1;
   double proximity_range = 3.0;
+  double duration = 0.0;  // s of the simulated run (0: all)
   std::string out;
   double rate = 1.0;
   bool no_security = false;
@@ -51,6 +52,7 @@ struct LaunchArgs {
 // What the launch plays: robot names, their streams (for timing and the
 // proximity schedule), and, simulated, the truth.
 struct Plan {
+  double simulate_seconds = 0.0;  // --sim: what simulating the swarm took here (each robot process does it again)
   std::vector<AgentStream> streams;
   std::vector<EncounterEvent> events;
   std::optional<SwarmTruth> truth;
@@ -62,7 +64,9 @@ Plan make_plan(const LaunchArgs& a) {
   Plan p;
   SlamOptions slam = a.slam;
   if (a.sim_seed) {
-    SimSwarmRun sim = simulate_swarm_run({a.robots, *a.sim_seed, a.world_seed, a.proximity_range});
+    const auto t0 = Clock::now();
+    SimSwarmRun sim = simulate_swarm_run({a.robots, *a.sim_seed, a.world_seed, a.proximity_range, a.duration});
+    p.simulate_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     p.streams = std::move(sim.streams);
     p.events = std::move(sim.events);
     p.truth = std::move(sim.truth);
@@ -99,6 +103,8 @@ class Launch {
  public:
   Launch(const LaunchArgs& a, Plan plan) : a_(a), plan_(std::move(plan)), out_(a.out), exe_(fs::read_symlink("/proc/self/exe")) {
     std::tie(swarm_domain_, ros_domain_) = domains(a);
+    startup_ = launch_startup_seconds(a.startup, plan_.simulate_seconds, plan_.streams.size(),
+                                      std::thread::hardware_concurrency());
     fs::create_directories(out_ / "logs");
     write_file_atomically(out_ / "config.json", to_json(plan_.config).dump(2) + "\n");
     if (!a.no_security) make_keys();
@@ -106,16 +112,17 @@ class Launch {
 
   // Starts everything, waits for the run to end, stops what still runs.
   void run() {
-    const double start_at = unix_now() + a_.startup;
+    const double start_at = unix_now() + startup_;
     for (std::size_t k = 0; k < plan_.streams.size(); ++k) start_agent(k, start_at);
     if (!a_.sim_seed) {
       for (const AgentStream& s : plan_.streams) start_replay(s.name, start_at);
       if (!plan_.events.empty()) proximity_ = group_.start(proximity_argv(start_at), out_ / "logs" / "proximity.log");
     }
-    const double run_seconds = a_.startup + seconds_of(plan_) / a_.rate;
-    fmt::print(stderr, "launch: {} robot process(es){}, about {:.0f} s; logs in {}\n", plan_.streams.size(),
-               a_.sim_seed ? "" : fmt::format(" + {} replay(s) + proximity", plan_.streams.size()), run_seconds,
-               (out_ / "logs").string());
+    const double run_seconds = startup_ + seconds_of(plan_) / a_.rate;
+    fmt::print(stderr, "launch: {} robot process(es){}, clocks start in {:.0f} s, about {:.0f} s; logs in {}\n",
+               plan_.streams.size(),
+               a_.sim_seed ? "" : fmt::format(" + {} replay(s) + proximity", plan_.streams.size()), startup_,
+               run_seconds, (out_ / "logs").string());
     wait_for_the_end(run_seconds);
   }
 
@@ -159,8 +166,9 @@ class Launch {
     if (a_.sim_seed)
       argv.insert(argv.end(), {"--sim", std::to_string(*a_.sim_seed), "--robot", std::to_string(k + 1), "--robots",
                                std::to_string(a_.robots), "--world-seed", std::to_string(a_.world_seed),
-                               "--proximity-range", text(a_.proximity_range), "--rate", text(a_.rate), "--start-at",
-                               fmt::format("{:.6f}", start_at), "--linger", text(a_.settle)});
+                               "--proximity-range", text(a_.proximity_range), "--duration", text(a_.duration),
+                               "--rate", text(a_.rate), "--start-at", fmt::format("{:.6f}", start_at), "--linger",
+                               text(a_.settle)});
     agents_.push_back(group_.start(argv, out_ / "logs" / (name + ".log")));
   }
 
@@ -168,7 +176,7 @@ class Launch {
     replays_.push_back(group_.start({exe_.string(), "replay", "--scenario", a_.scenario, "--agent", name,
                                      "--namespace", "/" + name, "--domain", std::to_string(ros_domain_), "--interface",
                                      "lo", "--rate", text(a_.rate), "--start-at", fmt::format("{:.6f}", start_at),
-                                     "--wait-for-subscribers", "1", "--wait-timeout", text(a_.startup + 60.0)},
+                                     "--wait-for-subscribers", "1", "--wait-timeout", text(startup_ + 60.0)},
                                     out_ / "logs" / ("replay_" + name + ".log")));
   }
 
@@ -215,6 +223,7 @@ class Launch {
   fs::path out_;
   fs::path exe_;
   int swarm_domain_ = 0, ros_domain_ = 0;
+  double startup_ = 0.0;
   ProcessGroup group_;
   std::vector<std::size_t> agents_, replays_;
   std::optional<std::size_t> proximity_;
@@ -259,6 +268,13 @@ void run_launch(const LaunchArgs& a) {
 
 }  // namespace
 
+double launch_startup_seconds(double requested, double simulate_seconds, std::size_t processes, unsigned cores) {
+  constexpr double kBusyMachine = 3.0;  // × the time an idle machine would take
+  constexpr double kComeUp = 2.0;       // s: DDS participants, security handshakes
+  const double rounds = std::ceil(static_cast<double>(processes) / static_cast<double>(std::max(1u, cores)));
+  return std::max(requested, kComeUp + kBusyMachine * simulate_seconds * rounds);
+}
+
 void add_launch_command(CLI::App& app) {
   auto args = std::make_shared<LaunchArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -270,12 +286,15 @@ void add_launch_command(CLI::App& app) {
   cmd->add_option("--world-seed", args->world_seed, "With --sim: seed of the building")->capture_default_str();
   cmd->add_option("--proximity-range", args->proximity_range, "With --sim: proximity sensor range (m)")
       ->capture_default_str();
+  cmd->add_option("--duration", args->duration, "With --sim: seconds of the simulated run to play (0: all of it)")
+      ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory")->required();
   cmd->add_option("--rate", args->rate, "Playback speed factor (1 = real time)")->capture_default_str();
   cmd->add_flag("--no-security", args->no_security, "Swarm topics without DDS Security (default: a fresh swarm CA)");
   cmd->add_option("--swarm-domain", args->swarm_domain, "DDS domain of the swarm (default: one of this run's own)");
   cmd->add_option("--ros-domain", args->ros_domain, "DDS domain of the robots' ROS 2 topics (default: the next one)");
-  cmd->add_option("--startup", args->startup, "Seconds for the processes to start before the clocks do")
+  cmd->add_option("--startup", args->startup,
+                  "Seconds for the processes to start before the clocks do (--sim: more if simulating takes long)")
       ->capture_default_str();
   cmd->add_option("--settle", args->settle, "Seconds after the last scan for the last encounters")
       ->capture_default_str();

@@ -17,6 +17,7 @@ struct SimSwarmSettings {
   std::uint64_t seed = 1;        // starts, routes, sensor noise
   std::uint64_t world_seed = 1;  // the building
   double range = 3.0;            // proximity sensor range, m
+  double duration = 0.0;         // s of the run played (0: all); scans and events after it are left out
 };
 
 struct SimSwarmRun {
@@ -25,7 +26,8 @@ struct SimSwarmRun {
   SwarmTruth truth;
 };
 
-// Deterministic from the settings. Throws ConfigError naming the setting.
+// Deterministic from the settings (a shorter duration gives the start of the
+// longer run). Throws ConfigError naming the setting.
 SimSwarmRun simulate_swarm_run(const SimSwarmSettings& settings);
 
 }  // namespace dsswarm

@@ -26,6 +26,7 @@ struct DemoArgs {
   std::uint64_t seed = 1;
   std::uint64_t world_seed = 1;
   double range = 3.0;
+  double duration = 0.0;  // s of the simulated run (0: all)
   bool no_merge = false;
   SlamOptions slam;
 };
@@ -43,7 +44,7 @@ void run_demo(const DemoArgs& a) {
   config.encounter.locate.search_radius = a.range;  // the proximity range bounds where the other robot is
   config.merge = !a.no_merge;
   const auto t0 = std::chrono::steady_clock::now();
-  SimSwarmRun sim = simulate_swarm_run({a.robots, a.seed, a.world_seed, a.range});
+  SimSwarmRun sim = simulate_swarm_run({a.robots, a.seed, a.world_seed, a.range, a.duration});
   fmt::print("simulated {} robot(s) × {} scans, {} proximity events, in {:.2f} s\n", a.robots,
              sim.streams.front().scans.size(), sim.events.size(),
              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -138,6 +139,7 @@ void add_swarm_demo_command(CLI::App& app) {
       ->check(non_negative_integer())
       ->capture_default_str();
   cmd->add_option("--range", args->range, "Proximity sensor range (m)")->check(CLI::Range(0.5, 20.0))->capture_default_str();
+  cmd->add_option("--duration", args->duration, "Seconds of the simulated run to play (0: all of it)")->capture_default_str();
   cmd->add_flag("--no-merge", args->no_merge, "Ignore encounters: every robot maps alone (the baseline)");
   add_slam_options(*cmd, args->slam);
   cmd->callback([args] { run_demo(*args); });
