@@ -9,6 +9,7 @@ src=$1; tmp=$2
 rm -rf "$tmp"; mkdir -p "$tmp/repo/scripts" "$tmp/bin"
 cp "$src/scripts/test.sh" "$src/scripts/demo.sh" "$tmp/repo/scripts/"
 printf '#!/bin/sh\nexit 0\n' > "$tmp/repo/scripts/install_deps.sh"
+printf '#!/bin/sh\nexit 0\n' > "$tmp/repo/scripts/fuzz.sh"  # the fuzz smoke run: not what this test is about
 cat > "$tmp/bin/cmake" <<'STUB'
 #!/usr/bin/env bash
 # cmake -S . -B DIR -DKEY=VALUE...: remembers the options in DIR/cache;
