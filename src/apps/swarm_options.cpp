@@ -45,7 +45,11 @@ void add_swarm_net_options(CLI::App& cmd, SwarmNetOptions& o) {
   cmd.add_option("--ros-domain", o.ros_domain, "DDS domain of the ROS 2 topics (default $ROS_DOMAIN_ID, else 0)");
   cmd.add_option("--interface", o.interface, "Network interface (name or address); lo = this machine only")
       ->capture_default_str();
-  cmd.add_option("--keys", o.keys, "Keys directory (dsswarm keys): the swarm topics use DDS Security");
+  CLI::Option* keys = cmd.add_option("--keys", o.keys, "Keys directory (dsswarm keys): the swarm topics use DDS Security");
+  cmd.add_flag("--secure-ros", o.secure_ros,
+               "The ROS 2 topics too, on the secured swarm domain: viewers need a certificate of the swarm "
+               "(dsswarm keys add DIR viewer) and ROS 2 security set up with it")
+      ->needs(keys);
 }
 
 // The link the runtime holds: forwards to the current DDS link, which
@@ -92,7 +96,10 @@ SwarmNet::SwarmNet(const SwarmNetOptions& options, const std::string& name, bool
     security_xml_ = security::security_config_xml(options.keys, name);
     link_config_.partition = "";  // the secured domain is the swarm's alone; permissions grant the default partition
   }
-  if (swarm_domain_ == ros_domain_of(options.ros_domain) && secured_)
+  if (options.secure_ros && !secured_) throw ConfigError("--secure-ros needs --keys (a secured swarm)");
+  if (options.secure_ros && options.ros_domain)
+    throw ConfigError("--secure-ros puts the ROS 2 topics on the secured swarm domain: leave out --ros-domain");
+  if (!options.secure_ros && swarm_domain_ == ros_domain_of(options.ros_domain) && secured_)
     throw ConfigError(fmt::format("the secured swarm domain {} is also the ROS 2 domain: give --ros-domain another",
                                   swarm_domain_));
   open_swarm();
@@ -128,6 +135,11 @@ bool SwarmNet::maintain() {
 std::size_t SwarmNet::recreations() const { return watch_ ? watch_->watchdog.recreations() : 0; }
 
 net::Participant& SwarmNet::ros() {
+  if (!ros_ && options_.secure_ros) {
+    // A participant of its own with the robot's identity: the swarm's may be
+    // recreated (maintain()) under the ROS writers.
+    ros_ = std::make_unique<net::Participant>(participant(swarm_domain_, options_.interface, security_xml_));
+  }
   if (!ros_) {
     const int domain = ros_domain_of(options_.ros_domain);
     ros_ = domain == swarm_domain_ && !secured_ ? nullptr

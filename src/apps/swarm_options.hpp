@@ -23,6 +23,9 @@ struct SwarmNetOptions {
   std::optional<int> ros_domain;
   std::string interface = "auto";  // network interface; "lo" = this machine only
   std::string keys;                // keys directory (dsswarm keys): secure the swarm topics
+  // The ROS 2 topics too: they move to the secured swarm domain, where only
+  // holders of a certificate of the swarm's CA (dsswarm keys add) see them.
+  bool secure_ros = false;
 };
 
 void add_swarm_net_options(CLI::App& command, SwarmNetOptions& options);

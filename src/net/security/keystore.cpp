@@ -209,7 +209,7 @@ RobotRecord add_robot(const fs::path& dir, const std::string& name, const RobotK
   write_private_key(staged.key(), key.get());
   write_file_atomically(staged.certificate(), pem_of(cert.get()));
   const PermissionsOptions permissions{name, record.subject, keys.domain_id,
-                                       o.permissions_validity.value_or(record.validity), swarm_topic_expressions()};
+                                       o.permissions_validity.value_or(record.validity), granted_topic_expressions()};
   write_signed(staged.permissions_source(), staged.permissions(), permissions_xml(permissions), ca);
   staging.commit();
 

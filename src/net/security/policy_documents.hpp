@@ -22,6 +22,13 @@ inline const std::vector<std::string>& swarm_topic_expressions() {
   return kTopics;
 }
 
+// What a robot's permissions grant: the swarm's topics and, for `agent
+// --secure-ros`, the ROS 2 ones ("rt/" + topic name, and ROS 2's graph topic).
+inline const std::vector<std::string>& granted_topic_expressions() {
+  static const std::vector<std::string> kTopics{"dsswarm*", "rt/*", "ros_discovery_info"};
+  return kTopics;
+}
+
 struct GovernanceOptions {
   int domain_id = 1;
   // Whole-message protection of discovery, liveliness and every RTPS message.
@@ -44,7 +51,7 @@ struct PermissionsOptions {
   std::string subject;  // "CN=robot1,O=dsswarm-1", compared field by field by Cyclone
   int domain_id = 1;
   Validity validity;
-  std::vector<std::string> topics = swarm_topic_expressions();  // publish and subscribe
+  std::vector<std::string> topics = granted_topic_expressions();  // publish and subscribe
 };
 
 // One grant for `subject`: publish and subscribe on `topics` in the domain
