@@ -3,6 +3,7 @@
 #include <string>
 
 #include "grid/ray_traversal.hpp"
+#include "grid/sampling.hpp"
 
 namespace dsswarm {
 
@@ -26,7 +27,8 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
   const Eigen::Vector2d origin = laser.translation();
   std::vector<Eigen::Vector2d> hits;
   hits.reserve(points.size());
-  for (const ScanPoint& p : points) hits.push_back(robot_pose * Eigen::Vector2d(p.x, p.y));
+  const PointTransform to_world(robot_pose);
+  for (const ScanPoint& p : points) hits.push_back(to_world(p.x, p.y));
 
   const EvidenceModel& ev = config_.evidence;
   const DsMass pass = ev.pass(), hit = ev.hit();
@@ -89,12 +91,10 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
       // through both is a tent centred exactly on the point: coarse cells no
       // longer pull scans towards their centres (a bias of up to half a cell,
       // the same for every wall of one orientation).
-      const double gx = h.x() / grid.resolution() - 0.5, gy = h.y() / grid.resolution() - 0.5;
-      const double fx = std::floor(gx), fy = std::floor(gy);
-      const auto x0 = static_cast<std::int32_t>(fx), y0 = static_cast<std::int32_t>(fy);
-      const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
-      const float weights[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
-      const CellIndex cells[4] = {{x0, y0}, {x0 + 1, y0}, {x0, y0 + 1}, {x0 + 1, y0 + 1}};
+      const BilinearPoint b = bilinear_point(h.x(), h.y(), 1.0 / grid.resolution());
+      const std::array<float, 4> weights = b.weights();
+      const CellIndex c = b.corner;
+      const CellIndex cells[4] = {c, {c.x + 1, c.y}, {c.x, c.y + 1}, {c.x + 1, c.y + 1}};
       for (int k = 0; k < 4; ++k) {
         if (weights[k] <= 0.0f) continue;
         DsMass& m = grid.mutable_at(cells[k]);

@@ -5,28 +5,10 @@
 #include <limits>
 
 #include "common/errors.hpp"
+#include "grid/sampling.hpp"
 
 namespace dsswarm {
 namespace {
-
-// Masses of `grid` at a world point, bilinear between the four nearest cell centres.
-DsMass sample(const DsGrid& grid, double wx, double wy) {
-  const double inv = 1.0 / grid.resolution();
-  const double gx = wx * inv - 0.5, gy = wy * inv - 0.5;
-  const double fx = std::floor(gx), fy = std::floor(gy);
-  DsMass q[4];
-  grid.quad({static_cast<std::int32_t>(fx), static_cast<std::int32_t>(fy)}, q);
-  const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
-  const float w[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
-  DsMass m;
-  for (int k = 0; k < 4; ++k) {
-    m.occupied += w[k] * q[k].occupied;
-    m.free += w[k] * q[k].free;
-  }
-  m.occupied = std::clamp(m.occupied, 0.0f, 1.0f);
-  m.free = std::clamp(m.free, 0.0f, 1.0f - m.occupied);
-  return m;
-}
 
 void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_target, const EvidenceModel& evidence) {
   CellIndex smin, smax;
@@ -45,15 +27,15 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
   }
   const CellIndex tmin = target.cell_of({lo_x, lo_y}), tmax = target.cell_of({hi_x, hi_y});
   const Pose2 target_in_source = source_in_target.inverse();
-  const double c = std::cos(target_in_source.theta), s = std::sin(target_in_source.theta);
+  const PointTransform to_source(target_in_source);
   const double tr = target.resolution();
   constexpr float kNothing = 1e-4f;  // below this the source knows nothing here
   for (std::int32_t y = tmin.y; y <= tmax.y; ++y) {
     const double wy = (y + 0.5) * tr;
     for (std::int32_t x = tmin.x; x <= tmax.x; ++x) {
       const double wx = (x + 0.5) * tr;
-      const double sx = target_in_source.x + c * wx - s * wy, sy = target_in_source.y + s * wx + c * wy;
-      const DsMass m = sample(source, sx, sy);
+      const Eigen::Vector2d sp = to_source(wx, wy);
+      const DsMass m = interpolated_masses(source, sp.x(), sp.y());
       if (m.occupied + m.free < kNothing) continue;
       DsMass& cell = target.mutable_at({x, y});
       cell = evidence.update(cell, m);
