@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
-  libpng-dev zlib1g-dev libzstd-dev libyaml-cpp-dev
+  libpng-dev zlib1g-dev libzstd-dev libyaml-cpp-dev libceres-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
 )

@@ -1,0 +1,199 @@
+#include "matching/branch_and_bound_matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace dsswarm {
+namespace {
+// Values are occupied − free in [-1, 1] stored as bytes: 0 ↔ -1, 255 ↔ 1.
+constexpr float kZero = 127.5f;
+constexpr std::uint8_t kUnknown = 128;  // a vacuous cell (0, rounded)
+double to_score(double mean_byte) { return mean_byte / kZero - 1.0; }
+}  // namespace
+
+BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy)
+    : resolution_(grid.resolution()) {
+  // Blocks of 2^(depth-1) cells at the top must cover the window's 2w/res + 1 offsets.
+  const double offsets = 2.0 * max_window_xy / resolution_ + 1.0;
+  const int depth = 1 + std::max(0, static_cast<int>(std::ceil(std::log2(std::max(1.0, offsets)))));
+  CellIndex lo, hi;
+  grid.bounds(lo, hi);
+  Level base;
+  base.origin = lo;
+  base.width = hi.x - lo.x;
+  base.height = hi.y - lo.y;
+  base.values.assign(static_cast<std::size_t>(base.width) * static_cast<std::size_t>(base.height), kUnknown);
+  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    for (int i = 0; i < DsGrid::kTileCells; ++i) {
+      const CellIndex c = DsGrid::tile_cell(origin, i);
+      const auto v = static_cast<std::uint8_t>(std::lround(kZero * (1.0f + cells[i].occupied - cells[i].free)));
+      base.values[static_cast<std::size_t>(c.y - lo.y) * static_cast<std::size_t>(base.width) +
+                  static_cast<std::size_t>(c.x - lo.x)] = v;
+    }
+  });
+  levels_.push_back(std::move(base));
+  // Level h from level h-1 by doubling: the block of 2^h starting at (x, y) is
+  // the four blocks of 2^(h-1) starting at (x, y), (x+s, y), (x, y+s), (x+s, y+s).
+  // It reaches s - 1 cells further down-left than level h-1: blocks starting
+  // there still cover cells of the grid.
+  for (int h = 1; h < depth; ++h) {
+    const Level& prev = levels_.back();
+    const std::int32_t s = 1 << (h - 1);
+    Level next;
+    next.origin = {prev.origin.x - s, prev.origin.y - s};
+    next.width = prev.width + s;
+    next.height = prev.height + s;
+    next.values.resize(static_cast<std::size_t>(next.width) * static_cast<std::size_t>(next.height));
+    for (std::int32_t y = 0; y < next.height; ++y) {
+      const std::int32_t cy = next.origin.y + y;
+      for (std::int32_t x = 0; x < next.width; ++x) {
+        const std::int32_t cx = next.origin.x + x;
+        next.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(next.width) + static_cast<std::size_t>(x)] =
+            std::max({prev.at(cx, cy), prev.at(cx + s, cy), prev.at(cx, cy + s), prev.at(cx + s, cy + s)});
+      }
+    }
+    levels_.push_back(std::move(next));
+  }
+}
+
+std::size_t BranchAndBoundMatcher::memory_bytes() const {
+  std::size_t n = 0;
+  for (const Level& l : levels_) n += l.values.capacity();
+  return n;
+}
+
+// One match call: the scan discretized per heading, and the depth-first search.
+struct BranchAndBoundMatcher::Search {
+  const BranchAndBoundMatcher& matcher;
+  std::vector<std::vector<CellIndex>> cells;  // per heading: the points' cells at the prior translation
+  std::vector<double> headings;               // per heading: θ offset from the prior
+  std::vector<float> weights;
+  double weight_sum = 0.0;
+  std::int32_t half_window = 0;  // offsets from -half_window to +half_window cells
+  Pose2 prior;
+  std::optional<Pose2> exclude;
+  double exclude_xy = 0.0, exclude_theta = 0.0;
+
+  struct Candidate {
+    int heading;
+    std::int32_t x, y;  // offset (cells) of the block's lower-left translation
+    double score;
+  };
+
+  double score(const Candidate& c, int level) const {
+    const Level& l = matcher.levels_[static_cast<std::size_t>(level)];
+    const std::vector<CellIndex>& pts = cells[static_cast<std::size_t>(c.heading)];
+    double sum = 0.0;
+    for (std::size_t i = 0; i < pts.size(); ++i) sum += weights[i] * l.at(pts[i].x + c.x, pts[i].y + c.y);
+    return to_score(sum / weight_sum);
+  }
+  Pose2 pose_of(const Candidate& c) const {
+    const double r = matcher.resolution_;
+    return {prior.x + c.x * r, prior.y + c.y * r, prior.theta + headings[static_cast<std::size_t>(c.heading)]};
+  }
+  bool excluded(const Candidate& c) const {
+    if (!exclude) return false;
+    const Pose2 p = pose_of(c);
+    return std::hypot(p.x - exclude->x, p.y - exclude->y) < exclude_xy &&
+           std::abs(normalize_angle(p.theta - exclude->theta)) < exclude_theta;
+  }
+
+  // Children of `c` (a block at `level`), scored at level - 1, best first.
+  std::vector<Candidate> children(const Candidate& c, int level) const {
+    const std::int32_t s = 1 << (level - 1);
+    std::vector<Candidate> out;
+    for (std::int32_t dy : {0, s})
+      for (std::int32_t dx : {0, s}) {
+        Candidate k{c.heading, c.x + dx, c.y + dy, 0.0};
+        if (k.x > half_window || k.y > half_window) continue;
+        k.score = score(k, level - 1);
+        out.push_back(k);
+      }
+    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+    return out;
+  }
+
+  void descend(const Candidate& c, int level, Candidate& best) const {
+    if (c.score <= best.score) return;
+    if (level == 0) {
+      if (!excluded(c)) best = c;
+      return;
+    }
+    for (const Candidate& k : children(c, level)) {
+      if (k.score <= best.score) break;  // sorted: none after it can do better
+      descend(k, level - 1, best);
+    }
+  }
+};
+
+double BranchAndBoundMatcher::heading_step(const std::vector<ScanPoint>& points) const {
+  double max_range = 0.0;
+  for (const ScanPoint& p : points)
+    max_range = std::max(max_range, std::hypot(static_cast<double>(p.x), static_cast<double>(p.y)));
+  // Law of cosines: the rotation that moves a point at max_range by one cell.
+  return max_range > resolution_ ? std::acos(1.0 - resolution_ * resolution_ / (2.0 * max_range * max_range))
+                                 : std::numbers::pi;
+}
+
+double BranchAndBoundMatcher::score(const std::vector<ScanPoint>& points, const Pose2& pose) const {
+  const PointTransform to_world(pose);
+  const double inv = 1.0 / resolution_;
+  double sum = 0.0, weights = 0.0;
+  for (const ScanPoint& p : points) {
+    const Eigen::Vector2d w = to_world(p.x, p.y);
+    sum += p.weight * levels_.front().at(static_cast<std::int32_t>(std::floor(w.x() * inv)),
+                                         static_cast<std::int32_t>(std::floor(w.y() * inv)));
+    weights += p.weight;
+  }
+  return weights > 0.0 ? to_score(sum / weights) : 0.0;
+}
+
+std::optional<BranchAndBoundResult> BranchAndBoundMatcher::match(const std::vector<ScanPoint>& points,
+                                                                 const Pose2& prior, const SearchWindow& window,
+                                                                 double min_score, const std::optional<Pose2>& exclude,
+                                                                 double exclude_xy, double exclude_theta) const {
+  if (points.empty()) return std::nullopt;
+  Search search{*this, {}, {}, {}, 0.0, 0, prior, exclude, exclude_xy, exclude_theta};
+  for (const ScanPoint& p : points) {
+    search.weights.push_back(p.weight);
+    search.weight_sum += p.weight;
+  }
+  if (!(search.weight_sum > 0.0)) return std::nullopt;
+  const double step = heading_step(points);
+  const int steps = static_cast<int>(std::ceil(window.theta / step));
+  const double inv = 1.0 / resolution_;
+  for (int k = -steps; k <= steps; ++k) {
+    const double dtheta = k * step;
+    const PointTransform to_world(Pose2(prior.x, prior.y, prior.theta + dtheta));
+    std::vector<CellIndex> cells;
+    cells.reserve(points.size());
+    for (const ScanPoint& p : points) {
+      const Eigen::Vector2d w = to_world(p.x, p.y);
+      cells.push_back({static_cast<std::int32_t>(std::floor(w.x() * inv)), static_cast<std::int32_t>(std::floor(w.y() * inv))});
+    }
+    search.cells.push_back(std::move(cells));
+    search.headings.push_back(dtheta);
+  }
+  const int max_level = depth() - 1;
+  search.half_window = static_cast<std::int32_t>(std::ceil(window.xy * inv));
+  const std::int32_t block = 1 << max_level;
+  std::vector<Search::Candidate> top;
+  for (int h = 0; h < static_cast<int>(search.headings.size()); ++h)
+    for (std::int32_t y = -search.half_window; y <= search.half_window; y += block)
+      for (std::int32_t x = -search.half_window; x <= search.half_window; x += block) {
+        Search::Candidate c{h, x, y, 0.0};
+        c.score = search.score(c, max_level);
+        top.push_back(c);
+      }
+  std::sort(top.begin(), top.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
+  Search::Candidate best{0, 0, 0, min_score};  // beaten only by poses scoring more
+  for (const Search::Candidate& c : top) {
+    if (c.score <= best.score) break;
+    search.descend(c, max_level, best);
+  }
+  if (!(best.score > min_score)) return std::nullopt;
+  return BranchAndBoundResult{search.pose_of(best), best.score};
+}
+
+}  // namespace dsswarm
