@@ -22,18 +22,24 @@ std::size_t peak_rss_bytes() {
   return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
 }
 
-RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+namespace {
+
+RunResult run(const SensorLog& log, Slam& slam, const std::string& label, SensorLog* release) {
   RunResult result;
-  result.trajectory.reserve(log.scans.size());
   const auto start = Clock::now();
   auto next_report = start + std::chrono::seconds(2);
   const std::size_t total = log.scans.size();
   const std::size_t first_index = slam.scans_processed();  // step indices count every scan the Slam saw
   for (std::size_t i = 0; i < total; ++i) {
-    const LaserScan& scan = log.scans[i];
-    const SlamStep step = slam.process(scan);
-    result.trajectory.push_back({scan.timestamp, step.pose});
-    for (const PoseRevision& r : step.revised) result.trajectory[r.index - first_index].pose = r.pose;
+    slam.process(log.scans[i]);
+    if (release) std::vector<float>().swap(release->scans[i].ranges);
     if (!label.empty() && (i & 63) == 0 && Clock::now() >= next_report) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const double rate = static_cast<double>(i + 1) / elapsed;
@@ -43,10 +49,28 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
       next_report = Clock::now() + std::chrono::seconds(2);
     }
   }
+  slam.finish();
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const std::vector<Pose2> optimized = slam.trajectory(), local = slam.local_trajectory();
+  result.trajectory.reserve(total);
+  result.frontend.reserve(total);
+  for (std::size_t i = 0; i < total; ++i) {
+    result.trajectory.push_back({log.scans[i].timestamp, optimized[first_index + i]});
+    result.frontend.push_back({log.scans[i].timestamp, local[first_index + i]});
+  }
   result.scans_read = total;
   result.scans_matched = slam.scans_matched();
   return result;
+}
+
+}  // namespace
+
+RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
+  return run(log, slam, label, nullptr);
+}
+
+RunResult run_slam_releasing(SensorLog& log, Slam& slam, const std::string& label) {
+  return run(log, slam, label, &log);
 }
 
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds) {
@@ -68,6 +92,26 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   j["cells_allocated"] = cells;
   j["map_bytes"] = slam.map().memory_bytes();
   j["bytes_per_cell"] = cells > 0 ? static_cast<double>(slam.map().memory_bytes()) / static_cast<double>(cells) : 0.0;
+  j["submaps"] = slam.submaps().finished().size() + (slam.submaps().current().scans > 0 ? 1 : 0);
+  j["submap_bytes"] = slam.submaps().memory_bytes();
+  const LoopCloser& closer = slam.loop_closer();
+  const LoopClosureStats& lc = closer.stats();
+  j["loop_closure"] = {{"nodes", closer.nodes()},
+                       {"graph_bytes", closer.memory_bytes()},
+                       {"rounds", lc.rounds},
+                       {"optimizations", lc.optimizations},
+                       {"searches", lc.searches},
+                       {"candidates", lc.candidates},
+                       {"accepted", lc.accepted},
+                       {"rejected",
+                        {{"no_match", lc.rejected_no_match},
+                         {"unknown", lc.rejected_unknown},
+                         {"inliers", lc.rejected_inliers},
+                         {"same_side", lc.rejected_same_side},
+                         {"ambiguous", lc.rejected_ambiguous},
+                         {"inconsistent", lc.rejected_inconsistent},
+                         {"residual", lc.rejected_residual}}},
+                       {"round_seconds", lc.background_seconds}};
   j["warnings"] = log.warnings;
   j["config"] = to_json(slam.config());
   return j;
@@ -77,6 +121,7 @@ void write_run_outputs(const std::filesystem::path& dir, const RunResult& result
                        const nlohmann::json& stats, const Trajectory* ground_truth) {
   std::filesystem::create_directories(dir);
   write_tum(dir / "trajectory.tum", result.trajectory);
+  write_tum(dir / "trajectory_frontend.tum", result.frontend);
   const GridRaster raster = slam.map().finest().to_raster();
   write_map_server(dir / "map.yaml", raster);
 

@@ -12,21 +12,29 @@ constexpr std::uint8_t kUnknown = 128;  // a vacuous cell (0, rounded)
 double to_score(double mean_byte) { return mean_byte / kZero - 1.0; }
 }  // namespace
 
-BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy)
+BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy, int max_depth,
+                                             std::optional<CellIndex> region_min, std::optional<CellIndex> region_max)
     : resolution_(grid.resolution()) {
-  // Blocks of 2^(depth-1) cells at the top must cover the window's 2w/res + 1 offsets.
+  // Blocks of 2^(depth-1) cells at the top cover the window's 2w/res + 1 offsets.
   const double offsets = 2.0 * max_window_xy / resolution_ + 1.0;
-  const int depth = 1 + std::max(0, static_cast<int>(std::ceil(std::log2(std::max(1.0, offsets)))));
+  const int depth = std::clamp(1 + static_cast<int>(std::ceil(std::log2(std::max(1.0, offsets)))), 1, max_depth);
   CellIndex lo, hi;
   grid.bounds(lo, hi);
+  if (region_min) lo = {std::max(lo.x, region_min->x), std::max(lo.y, region_min->y)};
+  if (region_max) hi = {std::min(hi.x, region_max->x), std::min(hi.y, region_max->y)};
+  hi = {std::max(hi.x, lo.x), std::max(hi.y, lo.y)};
   Level base;
   base.origin = lo;
   base.width = hi.x - lo.x;
   base.height = hi.y - lo.y;
   base.values.assign(static_cast<std::size_t>(base.width) * static_cast<std::size_t>(base.height), kUnknown);
   grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    if (origin.x >= hi.x || origin.y >= hi.y || origin.x + DsGrid::kTileSize <= lo.x ||
+        origin.y + DsGrid::kTileSize <= lo.y)
+      return;
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
       const CellIndex c = DsGrid::tile_cell(origin, i);
+      if (c.x < lo.x || c.y < lo.y || c.x >= hi.x || c.y >= hi.y) continue;
       const auto v = static_cast<std::uint8_t>(std::lround(kZero * (1.0f + cells[i].occupied - cells[i].free)));
       base.values[static_cast<std::size_t>(c.y - lo.y) * static_cast<std::size_t>(base.width) +
                   static_cast<std::size_t>(c.x - lo.x)] = v;

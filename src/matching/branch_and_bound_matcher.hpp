@@ -45,8 +45,13 @@ struct BranchAndBoundResult {
 class BranchAndBoundMatcher {
  public:
   // Precomputes the bounds of `grid` deep enough for windows up to
-  // `max_window_xy` metres (the deepest level's blocks span the whole window).
-  BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy);
+  // `max_window_xy` metres (the deepest level's blocks span the whole
+  // window) but at most `max_depth` levels (wider windows start from several
+  // blocks), over the cells [region_min, region_max) only when given (scan
+  // points outside it read as unknown): bounds cost a byte per cell and level.
+  BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy, int max_depth = 16,
+                        std::optional<CellIndex> region_min = std::nullopt,
+                        std::optional<CellIndex> region_max = std::nullopt);
 
   // The best pose within `window` around `prior` scoring more than
   // `min_score`, if any. `points` are in the robot frame; pass few (a couple

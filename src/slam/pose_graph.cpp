@@ -26,8 +26,8 @@ T wrapped(T a) {
   return a;
 }
 
-// Residual of a relative-pose measurement z of `to` in `from`'s frame:
-// (from⁻¹ ⊕ to) ⊖ z, scaled by the inverse standard deviations.
+// Residual of a relative-pose measurement z of a node in a submap's frame:
+// (submap⁻¹ ⊕ node) ⊖ z, scaled by the inverse standard deviations.
 struct RelativePoseError {
   Pose2 z;
   double weight_xy, weight_theta;
@@ -50,9 +50,8 @@ Block block_of(const Pose2& p) { return {p.x, p.y, p.theta}; }
 }  // namespace
 
 Pose2 constraint_error(const PoseGraph& graph, const Constraint& c) {
-  const Pose2& from = c.kind == Constraint::Kind::chain ? graph.nodes[static_cast<std::size_t>(c.from)]
-                                                         : graph.submaps[static_cast<std::size_t>(c.from)];
-  return between(c.relative, between(from, graph.nodes[static_cast<std::size_t>(c.to)]));
+  return between(c.relative, between(graph.submaps[static_cast<std::size_t>(c.submap)],
+                                     graph.nodes[static_cast<std::size_t>(c.node)]));
 }
 
 OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
@@ -71,18 +70,18 @@ OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
     const double wxy = 1.0 / (loop ? config.loop_sigma_xy : config.local_sigma_xy);
     const double wth = 1.0 / (loop ? config.loop_sigma_theta : config.local_sigma_theta);
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(new RelativePoseError{c.relative, wxy, wth});
-    double* from = c.kind == Constraint::Kind::chain ? nodes[static_cast<std::size_t>(c.from)].data()
-                                                     : submaps[static_cast<std::size_t>(c.from)].data();
-    problem.AddResidualBlock(cost, loop ? &huber : nullptr, from, nodes[static_cast<std::size_t>(c.to)].data());
+    problem.AddResidualBlock(cost, loop ? &huber : nullptr, submaps[static_cast<std::size_t>(c.submap)].data(),
+                             nodes[static_cast<std::size_t>(c.node)].data());
   }
-  // One pose held fixed anchors the global frame.
-  double* fixed = graph.fixed_submap >= 0 && static_cast<std::size_t>(graph.fixed_submap) < submaps.size()
-                      ? submaps[static_cast<std::size_t>(graph.fixed_submap)].data()
-                      : nodes.front().data();
-  if (problem.HasParameterBlock(fixed)) problem.SetParameterBlockConstant(fixed);
+  // One submap held fixed anchors the global frame.
+  if (graph.fixed_submap >= 0 && static_cast<std::size_t>(graph.fixed_submap) < submaps.size()) {
+    double* fixed = submaps[static_cast<std::size_t>(graph.fixed_submap)].data();
+    if (problem.HasParameterBlock(fixed)) problem.SetParameterBlockConstant(fixed);
+  }
 
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  // Nodes only meet submaps: eliminated first, they leave a small system in the submaps.
+  options.linear_solver_type = ceres::SPARSE_SCHUR;
   options.num_threads = 1;  // deterministic, and the caller decides where it runs
   options.max_num_iterations = config.max_iterations;
   options.logging_type = ceres::SILENT;

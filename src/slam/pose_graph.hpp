@@ -1,15 +1,17 @@
 #pragma once
 // The pose graph of one robot (sparse pose adjustment, Konolige et al. 2010,
 // as in Cartographer): trajectory nodes and submaps are SE(2) poses in the
-// global frame, tied by relative-pose constraints
+// global frame, tied by relative-pose constraints of a node in a submap
 //
-//   * local: a node in the submap its scan went into (local SLAM's estimate),
-//   * chain: a node in the frame of the node before it (local SLAM's motion),
-//   * loop:  a node in another submap (loop closure), under a robust loss,
+//   * local: local SLAM's estimate, for the submap the node's scan went into
+//     and, where submaps meet, the one before it (that ties them together),
+//   * loop:  a loop closure into another submap, under a robust loss,
 //
-// and optimized by Ceres (sparse Cholesky, one thread). The graph is plain
-// data: the loop-closure module snapshots it, optimizes the copy and hands
-// the poses back (graph_builder.hpp).
+// and optimized by Ceres (one thread). No constraint joins two nodes, so
+// Ceres eliminates the nodes first (Schur complement) and factorizes only
+// the submaps' part: fast, and small in memory however long the trajectory.
+// The graph is plain data: the loop-closure module snapshots it, optimizes
+// the copy and hands the poses back (loop_closer.hpp).
 #include <cstdint>
 #include <vector>
 
@@ -35,18 +37,18 @@ struct PoseGraphConfig {
 };
 
 struct Constraint {
-  enum class Kind : std::uint8_t { local, chain, loop };
+  enum class Kind : std::uint8_t { local, loop };
   Kind kind = Kind::local;
-  int from = 0;     // submap index (local, loop) or node index (chain)
-  int to = 0;       // node index
-  Pose2 relative;   // measured pose of `to` in the frame of `from`
+  int submap = 0;
+  int node = 0;
+  Pose2 relative;   // measured pose of the node in the submap's frame (its anchor)
 };
 
 struct PoseGraph {
   std::vector<Pose2> nodes;    // global poses of the trajectory nodes
   std::vector<Pose2> submaps;  // global poses of the submaps' anchors
   std::vector<Constraint> constraints;
-  int fixed_submap = 0;        // held constant: it anchors the global frame (-1: the first node instead)
+  int fixed_submap = 0;        // held constant: it anchors the global frame
 };
 
 struct OptimizationSummary {
@@ -59,8 +61,8 @@ struct OptimizationSummary {
 // Optimizes the poses of `graph` in place.
 OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config);
 
-// The constraint's error at the graph's current poses: where `to` is, seen
-// from `from`, relative to where the constraint measured it.
+// The constraint's error at the graph's current poses: where the node is,
+// seen from the submap, relative to where the constraint measured it.
 Pose2 constraint_error(const PoseGraph& graph, const Constraint& c);
 
 }  // namespace dsswarm

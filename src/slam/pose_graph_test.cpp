@@ -26,8 +26,9 @@ std::vector<Pose2> square() {
 constexpr int kNodesPerSubmap = 10;
 
 // Local SLAM's view: every step measured with a heading error of 0.11
-// degrees, integrated into a drifting local frame; chain and local
-// constraints from it, the global poses initialized to it.
+// degrees, integrated into a drifting local frame; local constraints from it
+// (each node in its submap, the first two also in the submap before), the
+// global poses initialized to it.
 PoseGraph drifting_graph(const std::vector<Pose2>& truth) {
   PoseGraph g;
   Pose2 local = truth.front();
@@ -35,11 +36,10 @@ PoseGraph drifting_graph(const std::vector<Pose2>& truth) {
     if (i > 0) local = local * between(truth[i - 1], truth[i]) * Pose2(0.0, 0.0, 0.002);
     g.nodes.push_back(local);
     if (i % kNodesPerSubmap == 0) g.submaps.push_back(local);
-    const int s = static_cast<int>(i) / kNodesPerSubmap;
-    g.constraints.push_back({Constraint::Kind::local, s, static_cast<int>(i), between(g.submaps.back(), local)});
-    if (i > 0)
-      g.constraints.push_back({Constraint::Kind::chain, static_cast<int>(i) - 1, static_cast<int>(i),
-                               between(g.nodes[i - 1], local)});
+    const int s = static_cast<int>(i) / kNodesPerSubmap, node = static_cast<int>(i);
+    g.constraints.push_back({Constraint::Kind::local, s, node, between(g.submaps.back(), local)});
+    if (s > 0 && i % kNodesPerSubmap < 2)
+      g.constraints.push_back({Constraint::Kind::local, s - 1, node, between(g.submaps[g.submaps.size() - 2], local)});
   }
   return g;
 }
@@ -123,9 +123,9 @@ TEST(PoseGraph, ConstraintErrorIsZeroWhereTheMeasurementHolds) {
   PoseGraph g;
   g.nodes = {Pose2(1, 2, 0.3), Pose2(2, 2.5, 0.6)};
   g.submaps = {Pose2(0.5, 1, 0.1)};
-  const Constraint chain{Constraint::Kind::chain, 0, 1, between(g.nodes[0], g.nodes[1])};
+  const Constraint local{Constraint::Kind::local, 0, 0, between(g.submaps[0], g.nodes[0])};
   const Constraint loop{Constraint::Kind::loop, 0, 1, between(g.submaps[0], g.nodes[1]) * Pose2(0.1, 0, 0)};
-  EXPECT_NEAR(std::hypot(constraint_error(g, chain).x, constraint_error(g, chain).y), 0.0, 1e-12);
+  EXPECT_NEAR(std::hypot(constraint_error(g, local).x, constraint_error(g, local).y), 0.0, 1e-12);
   EXPECT_NEAR(constraint_error(g, loop).x, -0.1, 1e-12);
   // An empty graph is left alone.
   PoseGraph empty;

@@ -14,6 +14,8 @@ void SlamConfig::validate() const {
   motion.validate();
   verify.validate();
   insert.validate();
+  submaps.validate();
+  loop_closure.validate();
   if (min_points < 1) throw ConfigError("slam.min_points must be >= 1");
   if (pause_after_still_scans < 0) throw ConfigError("slam.pause_after_still_scans must be >= 0");
 }
@@ -23,9 +25,10 @@ const SlamConfig& validated(const SlamConfig& config) {
   config.validate();
   return config;
 }
+bool is_identity(const Pose2& p) { return p.x == 0.0 && p.y == 0.0 && p.theta == 0.0; }
 }  // namespace
 
-Slam::Slam(const SlamConfig& config)
+Slam::Slam(const SlamConfig& config, Executor* background)
     : config_(validated(config)),
       filter_(config.filter),
       motion_(config.motion, config.use_odometry),
@@ -33,10 +36,14 @@ Slam::Slam(const SlamConfig& config)
       matcher_(config.matcher, config.seed),
       verifier_(config.verify),
       recovery_(config.matcher, config.seed + 1),
-      maps_(config.map, config.insert) {}
+      submaps_(config.map, config.submaps, config.insert),
+      closer_(config.loop_closure, config.map, config.points, config.seed + 2, background) {}
 
-Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start) : Slam(config) {
-  maps_ = MapKeeper(config_.map, config_.insert, std::move(initial));
+Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use, Executor* background)
+    : Slam(config, background) {
+  localize_only_ = use == MapUse::localize;
+  submaps_.start_with(std::move(initial), !localize_only_);
+  if (!localize_only_) closer_.add_fixed_submap();
   motion_.start_at(start);
   has_initial_map_ = true;
 }
@@ -48,8 +55,14 @@ bool Slam::filter_keeps(const LaserScan& scan) {
   return keep;
 }
 
+const MultiResMap& Slam::matching_map() const {
+  if (working_ && config_.submaps.single_map() && !localize_only_) return *working_;
+  return submaps_.local_map();
+}
+
 SlamStep Slam::process(const LaserScan& scan) {
-  SlamStep step;
+  submaps_.resume();  // after finish()
+  SlamStep step;  // poses in the local frame until finish_step
   step.index = processed_;
   const bool first = processed_ == 0;
   // A new map's frame is the odometry frame; a given map keeps its own.
@@ -64,16 +77,14 @@ SlamStep Slam::process(const LaserScan& scan) {
     step.pose = standing_still ? motion_.pose() : step.prior;
     step.dropped = true;
     if (config_.revise_dropped) gaps_.note_dropped(step.index, step.pose, motion_.pose());
-    motion_.advance(scan, step.pose);
-    return step;
+    return finish_step(std::move(step), scan, {}, false);
   }
   if (standing_still) {
     step.pose = motion_.pose();
     step.still = true;
     ++held_;
     gaps_.clear();
-    motion_.advance(scan, step.pose);
-    return step;
+    return finish_step(std::move(step), scan, {}, false);
   }
 
   const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
@@ -84,21 +95,59 @@ SlamStep Slam::process(const LaserScan& scan) {
   } else if (!first && enough_points) {
     match_and_verify(points, step);
   }
-  const bool founding = first && !has_initial_map_;
-  if (enough_points && (founding || step.matched)) maps_.insert(step.pose, scan, points);
-
   // A kept scan ends the gap; only a matched one knows better than the prediction.
   if (step.matched && !gaps_.empty()) step.revised = gaps_.revise(step.pose, step.prior);
   gaps_.clear();
+  const bool founding = first && !has_initial_map_;
+  return finish_step(std::move(step), scan, points, enough_points && (founding || step.matched) && !localize_only_);
+}
+
+SlamStep Slam::finish_step(SlamStep step, const LaserScan& scan, const std::vector<ScanPoint>& points, bool insert) {
+  const std::optional<int> submap = insert ? submaps_.insert(step.pose, scan, points) : std::nullopt;
+  closer_.add_scan(step.index, step.pose, submap, points, submaps_);
+  for (const PoseRevision& r : step.revised) closer_.revise_scan(r.index, r.pose);
   motion_.advance(scan, step.pose);
+  step.pose = closer_.to_global(step.pose);
+  step.prior = closer_.to_global(step.prior);
+  for (PoseRevision& r : step.revised) r.pose = closer_.to_global(r.pose);
+  if (submap && working_) working_->insert_scan(step.pose, scan.laser_offset, points);
   return step;
 }
 
+void Slam::finish() {
+  if (!localize_only_) submaps_.freeze();
+  closer_.finish(submaps_);
+}
+
+void Slam::replace_working_map(MultiResMap working) {
+  if (working.config().resolution != config_.map.resolution || working.levels() != config_.map.levels)
+    throw ConfigError("replace_working_map: the map's resolution/levels differ from this robot's");
+  working_ = std::move(working);
+}
+
+const MultiResMap& Slam::map() const { return working_ ? *working_ : own_map(); }
+
+const MultiResMap& Slam::own_map() const {
+  if (localize_only_) return submaps_.local_map();  // the given map, unchanged
+  const std::vector<const Submap*> all = submaps_.all();
+  if (all.empty()) return submaps_.current().map;
+  // One growing submap where local SLAM put it: that is the map, no copy.
+  if (all.size() == 1 && !all.front()->finished && is_identity(closer_.submap_cells_pose(all.front()->id)))
+    return all.front()->map;
+  const std::pair<std::size_t, std::uint64_t> version{submaps_.scans_inserted(), closer_.version()};
+  if (!global_ || global_version_ != version) {
+    global_ = combine_submaps(config_.map, all, [this](int id) { return closer_.submap_cells_pose(id); });
+    global_version_ = version;
+  }
+  return *global_;
+}
+
 void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step) {
-  const MatchResult m = recovery_.locate(maps_.map(), points, step.prior);
+  const MultiResMap& map = matching_map();
+  const MatchResult m = recovery_.locate(map, points, step.prior);
   step.pose = m.pose;
   step.score = m.score;
-  step.inlier_ratio = match_quality(maps_.map().finest(), points, m.pose).inlier_ratio;
+  step.inlier_ratio = match_quality(map.finest(), points, m.pose).inlier_ratio;
   step.matched = true;
   ++matched_;
 }
@@ -112,7 +161,7 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
   // pull a moving robot back to where it was.
   std::vector<Pose2> priors{step.prior};
   if (const std::optional<Pose2> constant_velocity = motion_.doubt(step.prior)) priors.push_back(*constant_velocity);
-  const MultiResMap& map = maps_.map();
+  const MultiResMap& map = matching_map();
   MatchResult m = matcher_.match(map, points, priors);
   MatchQuality q = match_quality(map.finest(), points, m.pose);
   if (verifier_.rejects(q)) {

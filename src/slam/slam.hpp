@@ -2,15 +2,23 @@
 // Single-robot SLAM pipeline: feed scans (with odometry when the robot has
 // it), get a pose per scan; the map is readable at any time.
 //
-//   scan ─► filter ─► standing still? ─► points ─► prior (motion predictor)
-//        ─► Monte-Carlo matcher against the map ─► match verifier (recovery
-//        search when it fails) ─► pose ─► insert scan into the map
+//   local SLAM, per scan, in its own local frame:
+//     scan ─► filter ─► standing still? ─► points ─► prior (motion predictor)
+//          ─► Monte-Carlo matcher against the local map (previous ⊕ current
+//             submap) ─► match verifier (recovery search when it fails)
+//          ─► pose ─► insert into the current submap
+//   global SLAM, in background rounds (loop_closer.hpp):
+//     new nodes ─► loop-closure search in finished submaps nearby ─► verify
+//          ─► pose graph (Ceres) ─► global poses; the global map is the
+//             Dempster combination of the submaps at their optimized poses
 //
-// The pipeline owns one small module per job (motion_predictor, standing_still,
-// match_verifier, recovery, gap_reviser, map_keeper). No I/O happens here:
-// readers and writers live in src/io.
+// The pipeline owns one small module per job (motion_predictor,
+// standing_still, match_verifier, recovery, gap_reviser, submaps,
+// loop_closer). No I/O happens here: readers and writers live in src/io,
+// threads in src/runtime.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "filter/scan_filter.hpp"
@@ -19,12 +27,14 @@
 #include "matching/monte_carlo_matcher.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/scan_points.hpp"
+#include "slam/executor.hpp"
 #include "slam/gap_reviser.hpp"
-#include "slam/map_keeper.hpp"
+#include "slam/loop_closer.hpp"
 #include "slam/match_verifier.hpp"
 #include "slam/motion_predictor.hpp"
 #include "slam/recovery.hpp"
 #include "slam/standing_still.hpp"
+#include "slam/submaps.hpp"
 
 namespace dsswarm {
 
@@ -51,6 +61,8 @@ struct SlamConfig {
   // first moved) is standing still (see standing_still.hpp). Needs use_odometry.
   int pause_after_still_scans = 20;  // 0: never pause
   InsertConfig insert;
+  SubmapConfig submaps{.max_scans = 150, .max_travel = 15.0};
+  LoopClosureConfig loop_closure;
 
   void validate() const;
 };
@@ -69,30 +81,52 @@ struct SlamStep {
   std::vector<PoseRevision> revised;
 };
 
+// What a given map is for.
+enum class MapUse {
+  extend,    // keep mapping in it (new evidence in new submaps)
+  localize,  // localize in it; it never changes
+};
+
 class Slam {
  public:
-  explicit Slam(const SlamConfig& config = {});
-  // Continues mapping in `initial` (a saved map, or evidence received from
-  // other robots): the first scan is matched against it from `start` (a wide
-  // search) instead of founding the map. `initial` counts as own evidence.
-  Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start);
+  // `background` runs loop closing (not owned; nullptr: on the calling thread).
+  explicit Slam(const SlamConfig& config = {}, Executor* background = nullptr);
+  // Starts in `initial` (a saved map, or evidence received from other
+  // robots): the first scan is matched against it from `start` (a wide
+  // search) instead of founding the map. Extending it, `initial` counts as
+  // own evidence and stays fixed as the first submap.
+  Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use = MapUse::extend,
+       Executor* background = nullptr);
 
   SlamStep process(const LaserScan& scan);
+  // Waits for background work and runs a last loop-closing round, so that
+  // trajectory() and map() reflect every scan. Processing may go on after.
+  void finish();
 
-  // The map the robot localizes in: its own evidence combined with whatever
-  // it received from others (see replace_working_map).
-  const MultiResMap& map() const { return maps_.map(); }
+  // The map the robot localizes in, in the global frame: its own evidence
+  // (the submaps at their optimized poses) or, once the swarm installed one,
+  // own ⊕ foreign (see replace_working_map).
+  const MultiResMap& map() const;
   // Only the evidence of this robot's own scans: what it shares with others,
   // so that nothing received from a third robot is ever passed on as its own.
-  const MultiResMap& own_map() const { return maps_.own_map(); }
-  // Installs a richer map to localize in (own evidence ⊕ foreign evidence,
-  // built by the swarm layer from own_map()). From then on every insertion
-  // goes into both maps; Dempster's rule is associative and commutative, so
-  // the working map stays exactly own ⊕ foreign.
-  void replace_working_map(MultiResMap working) { maps_.replace_working_map(std::move(working)); }
+  const MultiResMap& own_map() const;
+  // Installs a richer map (own evidence ⊕ foreign evidence, built by the
+  // swarm layer from own_map()) as map(); from then on every insertion goes
+  // into it too (Dempster's rule is associative and commutative, so it stays
+  // own ⊕ foreign). With one map (submaps.max_scans = max_travel = 0) the
+  // robot also localizes in it, as before submaps; with submaps it localizes
+  // in its own recent submaps.
+  void replace_working_map(MultiResMap working);
   // How many scans this robot has put into its own map (a snapshot's version).
-  std::size_t scans_inserted() const { return maps_.scans_inserted(); }
-  const Pose2& pose() const { return motion_.pose(); }
+  std::size_t scans_inserted() const { return submaps_.scans_inserted(); }
+  // The robot's pose now, in the global frame.
+  Pose2 pose() const { return closer_.to_global(motion_.pose()); }
+  // Every scan's pose in process() order: optimized (global frame), and as
+  // local SLAM estimated it (its local frame, before any loop closure).
+  std::vector<Pose2> trajectory() const { return closer_.trajectory(); }
+  std::vector<Pose2> local_trajectory() const { return closer_.local_trajectory(); }
+  const Submaps& submaps() const { return submaps_; }
+  const LoopCloser& loop_closer() const { return closer_; }
   std::size_t scans_processed() const { return processed_; }
   std::size_t scans_matched() const { return matched_; }
   std::size_t matches_rejected() const { return rejected_; }
@@ -107,10 +141,13 @@ class Slam {
   bool filter_keeps(const LaserScan& scan);
   // Matches `points` from step.prior (and alternatives), verifies the match
   // (with a recovery search when it fails) and fills step.pose / matched /
-  // score; a rejected match leaves the prior.
+  // score; a rejected match leaves the prior. Poses in the local frame.
   void match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step);
   // The first scan in a given map: where in it are we? Only the start is known, roughly.
   void locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step);
+  const MultiResMap& matching_map() const;
+  // Records the scan (local poses in `step`), inserts it, and turns the step's poses global.
+  SlamStep finish_step(SlamStep step, const LaserScan& scan, const std::vector<ScanPoint>& points, bool insert);
 
   SlamConfig config_;
   ScanFilter filter_;
@@ -120,13 +157,19 @@ class Slam {
   MatchVerifier verifier_;
   Recovery recovery_;
   GapReviser gaps_;
-  MapKeeper maps_;
-  bool has_initial_map_ = false;  // first scan is matched, not founding
+  Submaps submaps_;
+  LoopCloser closer_;
+  std::optional<MultiResMap> working_;  // own ⊕ foreign, once the swarm installed it
+  bool has_initial_map_ = false;        // first scan is matched, not founding
+  bool localize_only_ = false;
   double filter_seconds_ = 0.0;
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
   std::size_t rejected_ = 0;
   std::size_t held_ = 0;
+  // own_map() composed on demand, and what it was composed from.
+  mutable std::optional<MultiResMap> global_;
+  mutable std::pair<std::size_t, std::uint64_t> global_version_{0, 0};
 };
 
 }  // namespace dsswarm
