@@ -6,6 +6,9 @@
 #include <chrono>
 #include <vector>
 
+#include "sim/loop_world.hpp"
+#include "slam/slam.hpp"
+
 namespace dsswarm {
 namespace {
 
@@ -49,6 +52,44 @@ TEST(WorkerThread, DestroyingItFinishesWhatWasSubmitted) {
   // Waiting with nothing submitted returns at once.
   WorkerThread idle;
   idle.wait();
+}
+
+}  // namespace
+}  // namespace dsswarm
+
+namespace dsswarm {
+namespace {
+
+// Loop closing on a thread of its own gives the same map and trajectory as
+// on the calling thread: rounds are picked up at the same scans either way.
+TEST(WorkerThread, LoopClosingInTheBackgroundGivesTheSameResultAsInline) {
+  LoopWorldConfig world;
+  world.laps = 1.15;
+  const LoopWorld w = make_loop_world(world);
+  LidarConfig lidar;
+  lidar.range_max = 8.0;
+  RobotConfig robot;
+  robot.odom_drift = 0.05;
+  const SimulatedRun sim = simulate_run(w.world, w.tour, w.start, robot, lidar, 2);
+  Slam inline_slam;
+  WorkerThread worker;
+  Slam background_slam(SlamConfig{}, &worker);
+  for (const LaserScan& s : sim.log.scans) {
+    const SlamStep a = inline_slam.process(s), b = background_slam.process(s);
+    ASSERT_EQ(a.pose.x, b.pose.x);
+    ASSERT_EQ(a.pose.theta, b.pose.theta);
+  }
+  inline_slam.finish();
+  background_slam.finish();
+  ASSERT_GT(inline_slam.loop_closer().stats().accepted, 0u);
+  EXPECT_EQ(inline_slam.loop_closer().stats().accepted, background_slam.loop_closer().stats().accepted);
+  const std::vector<Pose2> a = inline_slam.trajectory(), b = background_slam.trajectory();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].x, b[i].x) << i;
+    ASSERT_EQ(a[i].y, b[i].y) << i;
+  }
+  EXPECT_GT(worker.cpu_seconds(), 0.0);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "slam/loop_closer.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "common/errors.hpp"
 #include "slam/loop_round.hpp"
@@ -108,6 +109,12 @@ void LoopCloser::revise_scan(std::size_t index, const Pose2& local_pose) {
   s.relative = s.node >= 0 ? between(nodes_[static_cast<std::size_t>(s.node)].local, local_pose) : local_pose;
 }
 
+TrajectoryNode LoopCloser::node(std::size_t i) const {
+  const Node& n = nodes_.at(i);
+  const Pose2& anchor = submaps_[static_cast<std::size_t>(n.submap)].anchor;
+  return {n.scan, n.submap, n.local, between(anchor, n.local), node_global(static_cast<int>(i)), n.points != nullptr};
+}
+
 Pose2 LoopCloser::node_global(int node) const {
   const auto i = static_cast<std::size_t>(node);
   return i < optimized_.size() ? optimized_[i] : global_from_local_ * nodes_[i].local;
@@ -178,6 +185,25 @@ void LoopCloser::start_round() {
   executor_->submit([job, config, weights, seed] { run_round(*job, config, weights, seed); });
 }
 
+LoopClosure LoopCloser::record(const LoopCandidate& c) const {
+  const SubmapRecord& r = submaps_[static_cast<std::size_t>(c.submap)];
+  LoopClosure closure{nodes_[static_cast<std::size_t>(c.node)].scan, c.submap, std::nullopt, c.relative,
+                      std::nullopt, Pose2(), c.score, c.inliers, c.same_side};
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int n : r.nodes) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (!closure.anchor_scan) closure.anchor_scan = node.scan;
+    const Pose2 in_submap = between(r.anchor, node.local);
+    const double d = std::hypot(in_submap.x - c.relative.x, in_submap.y - c.relative.y);
+    if (d < nearest) {
+      nearest = d;
+      closure.nearest_scan = node.scan;
+      closure.relative_to_nearest = between(in_submap, c.relative);
+    }
+  }
+  return closure;
+}
+
 void LoopCloser::apply_round() {
   std::unique_ptr<Round> round = std::move(in_flight_);
   const RoundOutput& out = round->out;
@@ -186,8 +212,7 @@ void LoopCloser::apply_round() {
   pending_ = out.pending;
   for (const LoopCandidate& c : out.accepted) {
     constraints_.push_back({Constraint::Kind::loop, c.submap, c.node, c.relative});
-    closures_.push_back({nodes_[static_cast<std::size_t>(c.node)].scan, c.submap, c.relative, c.score, c.inliers,
-                         c.same_side});
+    closures_.push_back(record(c));
     last_closure_travel_ = std::max(last_closure_travel_, nodes_[static_cast<std::size_t>(c.node)].travel);
   }
   if (!out.optimized) return;

@@ -35,10 +35,25 @@ namespace dsswarm {
 
 // An accepted loop closure, for the record.
 struct LoopClosure {
-  std::size_t scan = 0;  // the node's scan (process() order)
+  std::size_t scan = 0;         // the node's scan (process() order)
   int submap = 0;
-  Pose2 relative;        // the node's pose in the submap's frame
+  std::optional<std::size_t> anchor_scan;  // the scan the submap's frame is anchored at (none: a given map)
+  Pose2 relative;               // the node's pose in the submap's frame
+  // The same relative to the submap's node nearest to where the closure put
+  // it: free of the drift within the submap, for checking against a truth.
+  std::optional<std::size_t> nearest_scan;
+  Pose2 relative_to_nearest;
   double score = 0.0, inliers = 0.0, same_side = 0.0;
+};
+
+// A trajectory node as the graph holds it.
+struct TrajectoryNode {
+  std::size_t scan = 0;  // its scan (process() order)
+  int submap = 0;        // the submap its scan went into
+  Pose2 local;           // local SLAM's pose
+  Pose2 in_submap;       // the same in the submap's frame (anchor⁻¹ ⊕ local)
+  Pose2 global;          // the best global pose now
+  bool searched = false; // kept its points for the loop-closure search
 };
 
 class LoopCloser {
@@ -75,6 +90,7 @@ class LoopCloser {
   // Bumped whenever an optimization moved poses.
   std::uint64_t version() const { return version_; }
   std::size_t nodes() const { return nodes_.size(); }
+  TrajectoryNode node(std::size_t i) const;
   std::size_t memory_bytes() const;
 
  private:
@@ -101,6 +117,7 @@ class LoopCloser {
   void note_finished(const Submaps& submaps);
   void start_round();
   void apply_round();
+  LoopClosure record(const LoopCandidate& c) const;
   Pose2 node_global(int node) const;
 
   LoopClosureConfig config_;
