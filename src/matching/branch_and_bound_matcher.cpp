@@ -8,9 +8,44 @@ namespace dsswarm {
 namespace {
 // Values are occupied − free in [-1, 1] stored as bytes: 0 ↔ -1, 255 ↔ 1.
 constexpr float kZero = 127.5f;
-constexpr std::uint8_t kUnknown = 128;  // a vacuous cell (0, rounded)
+constexpr std::uint8_t kUnknown = BranchAndBoundMatcher::kUnknownByte;
 double to_score(double mean_byte) { return mean_byte / kZero - 1.0; }
+
+// out[i] = max(in[i - s], in[i]) for i in [0, n + s), values outside [0, n) unknown.
+void max_pairs(const std::uint8_t* in, std::int32_t n, std::int32_t s, std::uint8_t* out) {
+  const std::int32_t both = std::min(n, s);  // [0, both): only in[i] is inside
+  for (std::int32_t i = 0; i < both; ++i) out[i] = std::max(kUnknown, in[i]);
+  for (std::int32_t i = both; i < s; ++i) out[i] = kUnknown;  // neither (n < s)
+  for (std::int32_t i = s; i < n; ++i) out[i] = std::max(in[i - s], in[i]);
+  for (std::int32_t i = std::max(n, s); i < n + s; ++i) out[i] = std::max(in[i - s], kUnknown);
+}
+
+// out[i] = max(a[i], b[i]), a missing row reading as unknown.
+void max_rows(const std::uint8_t* a, const std::uint8_t* b, std::int32_t n, std::uint8_t* out) {
+  for (std::int32_t i = 0; i < n; ++i) out[i] = std::max(a ? a[i] : kUnknown, b ? b[i] : kUnknown);
+}
 }  // namespace
+
+BranchAndBoundMatcher::Level BranchAndBoundMatcher::doubled(const Level& prev, std::int32_t s) {
+  // The block of 2s cells starting at a cell is the four blocks of s starting
+  // at it and s cells further along x, y and both: a maximum along x, then
+  // along y. It reaches s cells further down-left than the level before.
+  const std::int32_t w = prev.width, h = prev.height;
+  std::vector<std::uint8_t> along_x(static_cast<std::size_t>(w + s) * static_cast<std::size_t>(h));
+  const auto row = [](auto& v, std::int32_t y, std::int32_t width) {
+    return v.data() + static_cast<std::ptrdiff_t>(y) * width;
+  };
+  for (std::int32_t y = 0; y < h; ++y) max_pairs(row(prev.values, y, w), w, s, row(along_x, y, w + s));
+  Level next;
+  next.origin = {prev.origin.x - s, prev.origin.y - s};
+  next.width = w + s;
+  next.height = h + s;
+  next.values.resize(static_cast<std::size_t>(next.width) * static_cast<std::size_t>(next.height));
+  for (std::int32_t y = 0; y < h + s; ++y)
+    max_rows(y - s >= 0 && y - s < h ? row(along_x, y - s, w + s) : nullptr, y < h ? row(along_x, y, w + s) : nullptr,
+             w + s, next.values.data() + static_cast<std::ptrdiff_t>(y) * (w + s));
+  return next;
+}
 
 BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy, int max_depth,
                                              std::optional<CellIndex> region_min, std::optional<CellIndex> region_max)
@@ -35,34 +70,14 @@ BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_wind
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
       const CellIndex c = DsGrid::tile_cell(origin, i);
       if (c.x < lo.x || c.y < lo.y || c.x >= hi.x || c.y >= hi.y) continue;
-      const auto v = static_cast<std::uint8_t>(std::lround(kZero * (1.0f + cells[i].occupied - cells[i].free)));
+      const auto v = static_cast<std::uint8_t>(kZero * (1.0f + cells[i].occupied - cells[i].free) + 0.5f);
       base.values[static_cast<std::size_t>(c.y - lo.y) * static_cast<std::size_t>(base.width) +
                   static_cast<std::size_t>(c.x - lo.x)] = v;
     }
   });
   levels_.push_back(std::move(base));
-  // Level h from level h-1 by doubling: the block of 2^h starting at (x, y) is
-  // the four blocks of 2^(h-1) starting at (x, y), (x+s, y), (x, y+s), (x+s, y+s).
-  // It reaches s - 1 cells further down-left than level h-1: blocks starting
-  // there still cover cells of the grid.
-  for (int h = 1; h < depth; ++h) {
-    const Level& prev = levels_.back();
-    const std::int32_t s = 1 << (h - 1);
-    Level next;
-    next.origin = {prev.origin.x - s, prev.origin.y - s};
-    next.width = prev.width + s;
-    next.height = prev.height + s;
-    next.values.resize(static_cast<std::size_t>(next.width) * static_cast<std::size_t>(next.height));
-    for (std::int32_t y = 0; y < next.height; ++y) {
-      const std::int32_t cy = next.origin.y + y;
-      for (std::int32_t x = 0; x < next.width; ++x) {
-        const std::int32_t cx = next.origin.x + x;
-        next.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(next.width) + static_cast<std::size_t>(x)] =
-            std::max({prev.at(cx, cy), prev.at(cx + s, cy), prev.at(cx, cy + s), prev.at(cx + s, cy + s)});
-      }
-    }
-    levels_.push_back(std::move(next));
-  }
+  // Level h (blocks of 2^h cells) from level h-1 by doubling.
+  for (int h = 1; h < depth; ++h) levels_.push_back(doubled(levels_.back(), 1 << (h - 1)));
 }
 
 std::size_t BranchAndBoundMatcher::memory_bytes() const {

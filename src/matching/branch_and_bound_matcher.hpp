@@ -44,6 +44,8 @@ struct BranchAndBoundResult {
 
 class BranchAndBoundMatcher {
  public:
+  static constexpr std::uint8_t kUnknownByte = 128;  // a vacuous cell's value (0, rounded)
+
   // Precomputes the bounds of `grid` deep enough for windows up to
   // `max_window_xy` metres (the deepest level's blocks span the whole
   // window) but at most `max_depth` levels (wider windows start from several
@@ -81,11 +83,13 @@ class BranchAndBoundMatcher {
     std::vector<std::uint8_t> values;
     std::uint8_t at(std::int32_t x, std::int32_t y) const {
       const std::int32_t lx = x - origin.x, ly = y - origin.y;
-      if (lx < 0 || ly < 0 || lx >= width || ly >= height) return 128;  // unknown
+      if (lx < 0 || ly < 0 || lx >= width || ly >= height) return kUnknownByte;
       return values[static_cast<std::size_t>(ly) * static_cast<std::size_t>(width) + static_cast<std::size_t>(lx)];
     }
   };
   struct Search;
+  // The level of blocks twice as wide as `prev`'s (blocks of s cells).
+  static Level doubled(const Level& prev, std::int32_t s);
 
   double resolution_;
   std::vector<Level> levels_;  // levels_[h]: blocks of 2^h cells

@@ -16,6 +16,7 @@ void InsertConfig::validate() const {
 void SubmapConfig::validate() const {
   if (max_scans < 0) throw ConfigError("submaps.max_scans must be >= 0");
   if (!(max_travel >= 0.0)) throw ConfigError("submaps.max_travel must be >= 0");
+  if (!(keep_previous >= 0.0 && keep_previous <= 1.0)) throw ConfigError("submaps.keep_previous must be in [0, 1]");
 }
 
 Submaps::Submaps(const MapConfig& map, const SubmapConfig& submaps, const InsertConfig& insert)
@@ -65,9 +66,9 @@ std::optional<int> Submaps::insert(const Pose2& local_pose, const LaserScan& sca
     return (config_.max_scans > 0 && s.scans >= fraction * config_.max_scans) ||
            (config_.max_travel > 0.0 && s.travel >= fraction * config_.max_travel);
   };
-  // Half-way through a submap its own evidence carries local SLAM: the
+  // Part-way through a submap its own evidence carries local SLAM: the
   // previous one is let go (half the insertion work and memory from here on).
-  if (local_ && reached(0.5)) local_.reset();
+  if (local_ && reached(config_.keep_previous)) local_.reset();
   if (reached(1.0)) finish_current();
   return id;
 }

@@ -3,7 +3,8 @@
 // Each scan's evidence goes into exactly one submap, so combining submaps
 // never counts a scan twice. A scan is matched against the local map: the
 // previous submap ⊕ the current one until the current one is half full (so
-// a new submap is never matched into empty), then the current one alone.
+// a new submap is never matched into empty; SubmapConfig::keep_previous),
+// then the current one alone.
 // Every `max_scans` scans or `max_travel` metres the current submap is
 // finished (frozen, shared with the loop-closure search) and a new one begins.
 //
@@ -41,6 +42,10 @@ struct SubmapConfig {
   // submaps: no loop closure then).
   int max_scans = 0;
   double max_travel = 0.0;  // m
+  // The local map holds the previous submap too until the current one is
+  // this full (a share of max_scans or max_travel): a young submap alone is
+  // too sparse to match against, and every scan goes into both meanwhile.
+  double keep_previous = 0.5;
 
   bool single_map() const { return max_scans == 0 && max_travel == 0.0; }
   void validate() const;  // throws ConfigError naming the field
