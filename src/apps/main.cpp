@@ -1,16 +1,28 @@
 // dsswarm: decentralized multi-robot 2D laser SLAM with Dempster–Shafer grids.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 
 #include <exception>
 
+#include "apps/agent_command.hpp"
 #include "apps/eval_command.hpp"
 #include "apps/filter_command.hpp"
+#include "apps/launch_command.hpp"
+#include "apps/replay_command.hpp"
+#include "apps/keys_command.hpp"
+#include "apps/proximity_command.hpp"
 #include "apps/run_command.hpp"
+#include "apps/status_command.hpp"
 #include "apps/swarm_command.hpp"
+#include "apps/trigger_command.hpp"
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
+  // Warnings go to stderr as "warning: ...", like errors; stdout carries results.
+  spdlog::set_default_logger(spdlog::stderr_color_st("dsswarm"));
+  spdlog::set_pattern("%^%l%$: %v");
   CLI::App app{"dsswarm: decentralized multi-robot 2D laser SLAM on small computers"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "dsswarm 0.1.0");
@@ -20,10 +32,21 @@ int main(int argc, char** argv) {
   dsswarm::add_filter_command(app);
   dsswarm::add_eval_command(app);
   dsswarm::add_config_command(app);
+  dsswarm::add_replay_command(app);
+  dsswarm::add_keys_command(app);
+  dsswarm::add_agent_command(app);
+  dsswarm::add_launch_command(app);
+  dsswarm::add_proximity_command(app);
+  dsswarm::add_trigger_command(app);
+  dsswarm::add_status_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version arrive as "errors" that exit 0; the rest are
+    // command-line mistakes: exit 2 like any other configuration error.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    fmt::print(stderr, "error: {}\nRun with --help for more information.\n", e.what());
+    return 2;
   } catch (const dsswarm::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

@@ -4,16 +4,18 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <filesystem>
+#include <cstdint>
 #include <memory>
 #include <optional>
 
 #include "apps/slam_options.hpp"
 #include "apps/slam_runner.hpp"
 #include "common/errors.hpp"
+#include "common/process_usage.hpp"
 #include "config/config_json.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/maps/dsmap.hpp"
+#include "io/output_paths.hpp"
 #include "runtime/worker_thread.hpp"
 
 namespace dsswarm {
@@ -25,11 +27,12 @@ struct RunArgs {
   std::string scan_topic = "/scan";
   std::string odom_topic = "/odom";
   bool tf_odometry = false;
+  bool odom_topic_named = false;  // --odom-topic given: a topic the bag lacks is an error
   std::string beams = "params";
   std::vector<double> laser_offset;
   std::string save_map;    // .dsmap written at the end (the robot's own map)
   std::string load_map;    // .dsmap to continue mapping in
-  std::string start_pose;  // "x,y,theta" in the loaded map's frame
+  std::vector<double> start_pose;  // x y theta in the loaded map's frame
   bool localize = false;   // with load_map: localize in it without changing it
   SlamOptions slam;
 };
@@ -37,40 +40,42 @@ struct RunArgs {
 // Name of the robot in the maps it saves (`run` maps one robot).
 constexpr const char* kRobotName = "robot";
 
-Pose2 parse_offset(const std::vector<double>& v) {
-  if (v.size() != 3) throw ConfigError("--laser-offset takes three numbers: x y theta");
-  return {v[0], v[1], v[2]};
-}
-
 void print_summary(const RunResult& r, const std::string& out) {
   fmt::print("{} scans, {} matched, {:.2f} s, {:.0f} scans/s; outputs in {}\n", r.scans_read, r.scans_matched,
              r.wall_seconds, r.wall_seconds > 0 ? static_cast<double>(r.scans_read) / r.wall_seconds : 0.0, out);
 }
 
 void run(const RunArgs& a) {
-  SlamConfig config = a.slam.resolve();  // config and map-file errors before any work
+  check_output_directory(a.out, "--out");  // output, config and map-file errors before any work
+  if (!a.save_map.empty()) check_output_file(a.save_map, "--save-map");
+  SlamConfig config = a.slam.resolve();
   std::optional<ContinuedMap> continued;
   if (!a.load_map.empty()) {
     continued = load_map_to_continue(a.load_map, config);
     for (const auto& w : continued->warnings) spdlog::warn("{}", w);
+    fmt::print("loaded map {}: {}\n", a.load_map, continued->description);
   }
   const std::optional<Pose2> start_pose =
-      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(parse_pose_option(a.start_pose, "--start-pose"));
+      a.start_pose.empty() ? std::nullopt : std::optional<Pose2>(pose_option(a.start_pose, "--start-pose"));
+  const std::optional<Pose2> laser_offset =
+      a.laser_offset.empty() ? std::nullopt : std::optional<Pose2>(pose_option(a.laser_offset, "--laser-offset"));
   LogReadOptions read;
   read.scan_topic = a.scan_topic;
   read.odom_topic = a.odom_topic;
   read.use_tf_odometry = a.tf_odometry;
+  read.odom_topic_named = a.odom_topic_named;
   if (a.beams == "classic") read.carmen.beams = CarmenOptions::BeamConvention::Classic;
   if (a.beams == "span180") read.carmen.beams = CarmenOptions::BeamConvention::Span180;
-  if (!a.laser_offset.empty()) read.carmen.laser_offset = parse_offset(a.laser_offset);
+  read.carmen.laser_offset = laser_offset;
 
   const auto t0 = std::chrono::steady_clock::now();
   SensorLog log = read_log(a.log, read);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!a.laser_offset.empty())  // bags too: the flag overrides whatever the log says
-    for (auto& s : log.scans) s.laser_offset = parse_offset(a.laser_offset);
+  if (laser_offset)  // bags too: the flag overrides whatever the log says
+    for (auto& s : log.scans) s.laser_offset = *laser_offset;
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  require_returns(log);
 
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same
@@ -85,20 +90,21 @@ void run(const RunArgs& a) {
   } else {
     slam = std::make_unique<Slam>(config, &background);
   }
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = cpu_seconds();
   const RunResult result = run_slam_releasing(log, *slam);
   nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
-  stats["cpu_seconds"] = process_cpu_seconds() - cpu0;
+  stats["cpu_seconds"] = cpu_seconds() - cpu0;
   stats["background_cpu_seconds"] = background.cpu_seconds();
   stats["waited_seconds"] = background.waited_seconds();
   if (!a.load_map.empty()) stats["load_map"] = a.load_map;
   if (a.localize) stats["localize"] = true;
-  write_run_outputs(a.out, result, *slam, stats);
+  OutputFiles files = run_output_files(a.out, result, *slam, stats);
   if (!a.save_map.empty()) {
-    const std::filesystem::path path(a.save_map);
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    write_dsmap(a.save_map, own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
+    const std::vector<std::uint8_t> map =
+        encode_dsmap(own_map_snapshot(*slam, kRobotName, continued ? continued->version : 0));
+    files.add(a.save_map, std::string(map.begin(), map.end()));
   }
+  files.write_all();
   print_summary(result, a.out);
 }
 
@@ -106,16 +112,17 @@ void run(const RunArgs& a) {
 
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "Single-robot SLAM on a recorded log (CARMEN .log/.clf[.gz] or ROS1 .bag)");
-  cmd->add_option("log", args->log, "Log file")->required()->check(CLI::ExistingFile);
+  CLI::App* cmd = app.add_subcommand("run", "Single-robot SLAM on a recorded log (CARMEN .log/.clf[.gz], ROS1 .bag, ROS 2 bag)");
+  cmd->add_option("log", args->log, "Log: CARMEN file, ROS1 .bag, ROS 2 bag (folder, .db3 or .mcap)")->required();
   cmd->add_option("--out", args->out, "Output directory (created if needed)")->required();
   cmd->add_option("--scan-topic", args->scan_topic, "ROS bag: sensor_msgs/LaserScan topic")->capture_default_str();
-  cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
+  const CLI::Option* odom_topic =
+      cmd->add_option("--odom-topic", args->odom_topic, "ROS bag: nav_msgs/Odometry topic")->capture_default_str();
   cmd->add_flag("--tf-odometry", args->tf_odometry, "ROS bag: take odometry from /tf instead of the odometry topic");
   cmd->add_option("--beams", args->beams, "CARMEN beam angles: params (# PARAM lines, else classic), classic, span180")
       ->check(CLI::IsMember({"params", "classic", "span180"}))
       ->capture_default_str();
-  cmd->add_option("--laser-offset", args->laser_offset, "Laser pose on the robot: x y theta (m, m, rad)")
+  cmd->add_option("--laser-offset", args->laser_offset, "Laser pose on the robot: X Y THETA (m, m, rad)")
       ->expected(3);
   cmd->add_option("--save-map", args->save_map, "Write the robot's map at the end of the run (.dsmap, see README)");
   CLI::Option* load = cmd->add_option("--load-map", args->load_map,
@@ -125,11 +132,15 @@ void add_run_command(CLI::App& app) {
                "--save-map then writes it unchanged")
       ->needs(load);
   cmd->add_option("--start-pose", args->start_pose,
-                  "With --load-map: robot pose at the first scan in the map's frame, x,y,theta (m, m, rad); "
+                  "With --load-map: robot pose at the first scan in the map's frame, X Y THETA (m, m, rad); "
                   "default: the first scan's odometry pose")
+      ->expected(3)
       ->needs(load);
   add_slam_options(*cmd, args->slam);
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, odom_topic] {
+    args->odom_topic_named = odom_topic->count() > 0;
+    run(*args);
+  });
 }
 
 void add_config_command(CLI::App& app) {

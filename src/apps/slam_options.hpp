@@ -4,9 +4,10 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "slam/slam.hpp"
-#include "swarm/swarm_session.hpp"
+#include "swarm/swarm_config.hpp"
 
 namespace dsswarm {
 
@@ -26,8 +27,13 @@ struct SlamOptions {
 
 void add_slam_options(CLI::App& command, SlamOptions& options);
 
-// "x,y,theta" (metres, metres, radians) as given to `--start-pose`. Throws
-// ConfigError naming `option` unless it is exactly three finite numbers.
-Pose2 parse_pose_option(const std::string& text, const std::string& option);
+// For unsigned options (seeds): a whole number >= 0. CLI11 alone would wrap
+// "-1" around to 18446744073709551615.
+CLI::Validator non_negative_integer();
+
+// The three numbers x y theta (metres, metres, radians) of a pose option
+// (`--start-pose`, `--laser-offset`). Throws ConfigError naming `option`
+// unless they are exactly three finite numbers.
+Pose2 pose_option(const std::vector<double>& values, const std::string& option);
 
 }  // namespace dsswarm

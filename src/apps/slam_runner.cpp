@@ -3,11 +3,13 @@
 #include <fmt/core.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "common/errors.hpp"
 #include "config/config_json.hpp"
 #include "io/atomic_file.hpp"
+#include "io/maps/annotate.hpp"
 #include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"
 #include "io/maps/render.hpp"
@@ -16,18 +18,7 @@ namespace dsswarm {
 
 using Clock = std::chrono::steady_clock;
 
-std::size_t peak_rss_bytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
-}
-
-double process_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-}
+constexpr Rgb kGroundTruthColour{40, 170, 60};
 
 namespace {
 
@@ -117,28 +108,53 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   return j;
 }
 
+bool has_returns(const std::vector<LaserScan>& scans) {
+  return std::any_of(scans.begin(), scans.end(), [](const LaserScan& s) { return s.valid_count() > 0; });
+}
+
+void require_returns(const SensorLog& log) {
+  if (!log.scans.empty() && !has_returns(log.scans))
+    throw InputError(fmt::format("{}: no scan has a valid return: every reading of the {} scans is NaN, inf, at or "
+                                 "below the minimum range or at or beyond the maximum range ({} m): nothing to map",
+                                 log.source, log.scans.size(), log.scans.front().range_max));
+}
+
+OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
+                             const nlohmann::json& stats, const Trajectory* ground_truth) {
+  const GridRaster raster = slam.map().finest().to_raster();
+  if (raster.width == 0)
+    throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
+  OutputFiles files;
+  files.add(dir / "trajectory.tum", format_tum(dir / "trajectory.tum", result.trajectory));
+  files.add(dir / "trajectory_frontend.tum", format_tum(dir / "trajectory_frontend.tum", result.frontend));
+  add_map_server(files, dir / "map.yaml", raster);
+  Image picture = render_map(raster, fitting_scale(raster));
+  auto path_of = [](const Trajectory& t) {
+    std::vector<Eigen::Vector2d> pts;
+    pts.reserve(t.size());
+    for (const auto& p : t) pts.push_back(p.pose.translation());
+    return pts;
+  };
+  std::vector<LegendEntry> legend;
+  if (ground_truth) {
+    draw_path(picture, raster, path_of(*ground_truth), kGroundTruthColour);
+    legend.push_back({"ground truth", kGroundTruthColour});
+  }
+  draw_path(picture, raster, path_of(result.trajectory), agent_colour(0));
+  legend.push_back({"trajectory", agent_colour(0)});
+  if (!result.trajectory.empty()) {
+    draw_ringed_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 4);
+    legend.push_back({"start", agent_colour(0), LegendEntry::Mark::Disc});
+  }
+  picture = with_legend(picture, raster.resolution * raster.width / picture.width, legend);
+  files.add(dir / "map.png", encode_png(dir / "map.png", picture));
+  files.add(dir / "stats.json", stats.dump(2) + "\n");
+  return files;
+}
+
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                        const nlohmann::json& stats, const Trajectory* ground_truth) {
-  std::filesystem::create_directories(dir);
-  write_tum(dir / "trajectory.tum", result.trajectory);
-  write_tum(dir / "trajectory_frontend.tum", result.frontend);
-  const GridRaster raster = slam.map().finest().to_raster();
-  write_map_server(dir / "map.yaml", raster);
-
-  if (raster.width > 0) {
-    Image picture = render_map(raster, fitting_scale(raster));
-    auto path_of = [](const Trajectory& t) {
-      std::vector<Eigen::Vector2d> pts;
-      pts.reserve(t.size());
-      for (const auto& p : t) pts.push_back(p.pose.translation());
-      return pts;
-    };
-    if (ground_truth) draw_polyline(picture, raster, path_of(*ground_truth), Rgb{40, 170, 60}, 1);
-    draw_polyline(picture, raster, path_of(result.trajectory), agent_colour(0), 1);
-    if (!result.trajectory.empty()) draw_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 3);
-    write_png(dir / "map.png", picture);
-  }
-  write_file_atomically(dir / "stats.json", stats.dump(2) + "\n");
+  run_output_files(dir, result, slam, stats, ground_truth).write_all();
 }
 
 MapSnapshot own_map_snapshot(const Slam& slam, const std::string& sender, std::uint64_t previous_version) {
@@ -158,7 +174,7 @@ ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config) {
     throw InputError(fmt::format("{}: the map has resolution {} m and {} levels, the configuration {} m and {} levels "
                                  "(set map.resolution / map.levels or --resolution to match the file)",
                                  path, file.resolution, file.levels, config.map.resolution, config.map.levels));
-  ContinuedMap result{MultiResMap(), layer.version, {}};
+  ContinuedMap result{MultiResMap(), layer.version, {}, {}};
   if (snapshot.layers.size() > 1)
     result.warnings.push_back(fmt::format("{}: {} layers; continuing in layer 0 ('{}', the sender's own map) only",
                                           path, snapshot.layers.size(), layer.origin));
@@ -175,6 +191,11 @@ ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config) {
   config.map.evidence = file.evidence;
   result.map = MultiResMap(config.map);
   for (int l = 0; l < result.map.levels(); ++l) result.map.mutable_level(l) = layer.map->level(l);
+  const GridRaster extent = result.map.finest().to_raster();
+  result.description = fmt::format(
+      "layer 0 of {} ('{}', version {}), {} levels, {} m cells, {} cells allocated, {:.1f} m x {:.1f} m",
+      snapshot.layers.size(), layer.origin, layer.version, file.levels, file.resolution,
+      result.map.cells_allocated(), extent.width * extent.resolution, extent.height * extent.resolution);
   return result;
 }
 

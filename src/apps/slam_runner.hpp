@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "common/process_usage.hpp"
+#include "io/atomic_file.hpp"
 #include "io/trajectory/tum.hpp"
 #include "sensor/laser_scan.hpp"
 #include "slam/slam.hpp"
@@ -33,9 +35,21 @@ RunResult run_slam_releasing(SensorLog& log, Slam& slam, const std::string& labe
 // stats.json contents: the keys promised in the README.
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds);
 
-// Writes trajectory.tum, trajectory_frontend.tum, map.pgm + map.yaml (ROS map_server), map.png (map with
-// the trajectory, and `ground_truth` in another colour if given), stats.json.
-// Each file is written atomically; the directory is created if needed.
+// Whether any of `scans` has a valid return (a reading the map can use).
+bool has_returns(const std::vector<LaserScan>& scans);
+
+// InputError naming the log unless some scan has a valid return: a log of
+// nothing but max-range readings would give an empty map.
+void require_returns(const SensorLog& log);
+
+// trajectory.tum (optimized), trajectory_frontend.tum (as first estimated),
+// map.pgm + map.yaml (ROS map_server), map.png (map with the
+// trajectory, and `ground_truth` in another colour if given), stats.json, in
+// memory: InputError if the map is empty, before anything is written.
+OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
+                             const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
+
+// Writes run_output_files (all of them or none); the directory is created if needed.
 void write_run_outputs(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                        const nlohmann::json& stats, const Trajectory* ground_truth = nullptr);
 
@@ -49,6 +63,8 @@ struct ContinuedMap {
   MultiResMap map;                    // layer 0 of the file, with `config`'s insertion settings
   std::uint64_t version = 0;          // the layer's version (scans already in it)
   std::vector<std::string> warnings;  // extra layers ignored, evidence model taken from the file
+  // What was loaded, one line: layer, version, levels, resolution, cells, extent.
+  std::string description;
 };
 
 // Reads layer 0 of the .dsmap file `path`. Throws InputError naming the file
@@ -57,9 +73,5 @@ struct ContinuedMap {
 // it was built with: `config.map.evidence` is set to the file's.
 ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config);
 
-// Peak resident set size of this process, bytes.
-std::size_t peak_rss_bytes();
-// CPU time of this process so far (every thread, user + system), seconds.
-double process_cpu_seconds();
 
 }  // namespace dsswarm

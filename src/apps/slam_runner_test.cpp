@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 
 #include "apps/slam_options.hpp"
 #include "common/errors.hpp"
@@ -120,13 +121,15 @@ TEST(SlamRunner, LoadedMapMustMatchTheConfiguredGrid) {
   EXPECT_THROW(load_map_to_continue((file.parent_path() / "none.dsmap").string(), config), InputError);
 }
 
-TEST(SlamOptions, StartPoseIsThreeFiniteNumbers) {
-  const Pose2 p = parse_pose_option("1.5,-2,0.25", "--start-pose");
+TEST(SlamOptions, PoseOptionIsThreeFiniteNumbers) {
+  const Pose2 p = pose_option({1.5, -2.0, 0.25}, "--start-pose");
   EXPECT_DOUBLE_EQ(p.x, 1.5);
   EXPECT_DOUBLE_EQ(p.y, -2.0);
   EXPECT_DOUBLE_EQ(p.theta, 0.25);
-  for (const char* bad : {"", "1,2", "1,2,3,4", "1,2,x", "1,,3", "1,2,3,", "nan,0,0", "inf,0,0", "1e999,0,0", " 1,2,3"})
-    EXPECT_THROW(parse_pose_option(bad, "--start-pose"), ConfigError) << "'" << bad << "'";
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::vector<double>> bad_values = {{}, {1, 2}, {1, 2, 3, 4}, {nan, 0, 0}, {0, inf, 0}};
+  for (const std::vector<double>& bad : bad_values)
+    EXPECT_THROW(pose_option(bad, "--start-pose"), ConfigError) << bad.size() << " values";
 }
 
 // Accuracy regression on a real log: a generous bound (the README reports the

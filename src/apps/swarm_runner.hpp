@@ -1,6 +1,6 @@
 #pragma once
-// Runs a SwarmSession with progress on stderr and writes what `dsswarm swarm`
-// and `dsswarm demo` promise (README, "Swarm outputs"):
+// Runs a SwarmSession with progress on stderr and writes what `dsswarm swarm`,
+// `dsswarm demo` and `dsswarm launch` promise (README, "Swarm outputs"):
 //   agents/<name>/trajectory.tum       poses in the agent's own map frame, play order
 //   agents/<name>/map.{yaml,pgm}       the agent's own map (ROS map_server)
 //   agents/<name>/merged_map.{yaml,pgm,png}  own ⊕ everything it received
@@ -8,6 +8,8 @@
 //   encounters.json                    one entry per encounter (and, simulated, its true error)
 //   swarm.png                          first agent's merged map, all trajectories, encounters
 //   stats.json                         per-agent and per-encounter figures
+// A reused folder keeps no files of agents the earlier run had and this one
+// has not (stale_outputs.hpp); files dsswarm did not write stay.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,26 +17,27 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/trajectory/tum.hpp"
-#include "swarm/swarm_session.hpp"
+#include "eval/swarm_run.hpp"
+#include "protocol/swarm_session.hpp"
 
 namespace dsswarm {
-
-// Ground truth of a simulated swarm: per agent, the true world pose at each
-// scan timestamp. Enables transform errors, coverage and ATE in the outputs.
-struct SwarmTruth {
-  std::vector<Trajectory> world_poses;
-};
-
-// Serializes snapshots as .dsmap bytes and back, as the network would carry
-// them (and counts the bytes).
-SnapshotTransport dsmap_transport();
 
 // Plays the session; returns the wall-clock seconds it took.
 double run_swarm_session(SwarmSession& session, const std::string& label);
 
-// Writes every output into `dir` (atomically, file by file) and returns stats.json's content.
-nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const SwarmSession& session,
-                                   double wall_seconds, const SwarmTruth* truth = nullptr);
+// The session's results (maps shared, not copied: valid while it lives).
+SwarmRunResult run_result(const SwarmSession& session);
+
+struct SwarmOutputOptions {
+  double wall_seconds = 0.0;
+  const SwarmTruth* truth = nullptr;  // simulated runs: ATE, coverage, transform errors
+  // false: the agents wrote agents/<name>/ themselves (robot processes); only
+  // ground_truth.tum is added there.
+  bool agent_files = true;
+};
+
+// Writes every output into `dir` (all of them or, on an error, none) and returns stats.json's content.
+nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const SwarmRunResult& run,
+                                   const SwarmOutputOptions& options);
 
 }  // namespace dsswarm

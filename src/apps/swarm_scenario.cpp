@@ -10,7 +10,9 @@
 #include <set>
 #include <utility>
 
+#include "common/agent_name.hpp"
 #include "common/errors.hpp"
+#include "sensor/play_clock.hpp"
 
 namespace dsswarm {
 namespace {
@@ -93,11 +95,13 @@ class ScenarioFile {
   }
 
   // An existing file named relative to the scenario's folder.
-  fs::path existing_file(const YAML::Node& node, const std::string& context, const std::string& key) const {
+  // `folder_ok`: a folder will do (a ROS 2 bag is one).
+  fs::path existing_file(const YAML::Node& node, const std::string& context, const std::string& key,
+                         bool folder_ok = false) const {
     const fs::path given = text(node, context, key);
     const fs::path resolved = given.is_absolute() ? given : fs::path(file_).parent_path() / given;
     std::error_code ec;
-    if (!fs::is_regular_file(resolved, ec)) {
+    if (!fs::is_regular_file(resolved, ec) && !(folder_ok && fs::is_directory(resolved, ec))) {
       fail(node, context, key, fmt::format("file not found: {}", resolved.string()));
     }
     return resolved.lexically_normal();
@@ -111,12 +115,12 @@ class ScenarioFile {
   std::string file_;
 };
 
-YAML::Node load_root(const fs::path& yaml) {
-  std::error_code ec;
-  if (!fs::is_regular_file(yaml, ec)) throw InputError(fmt::format("{}: scenario file not found", yaml.string()));
+// `load` parses the scenario's YAML (from its file or from text).
+template <typename Load>
+YAML::Node load_root(const fs::path& yaml, Load load) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(yaml.string());
+    root = load();
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}: line {}: invalid YAML: {}", yaml.string(), e.mark.line + 1, e.msg));
   } catch (const YAML::Exception& e) {
@@ -131,14 +135,6 @@ YAML::Node load_root(const fs::path& yaml) {
 }
 
 // Agent names become folder names in the swarm command's output.
-bool is_valid_agent_name(const std::string& name) {
-  if (name.empty() || name == "." || name == "..") return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
-           c == '.';
-  });
-}
-
 struct AgentSpec {
   YAML::Node node;
   std::string context;  // "agents[i] (name):"
@@ -214,13 +210,12 @@ AgentStream build_stream(const AgentSpec& a, const SensorLog& log, const Segment
   if (a.backward) std::reverse(stream.scans.begin(), stream.scans.end());
   const double t_first = stream.scans.front().timestamp;
   const double sign = a.backward ? -1.0 : 1.0;
-  double elapsed = 0.0;
+  const std::vector<double> elapsed =
+      play_clock(stream.scans, a.backward ? PlayDirection::backward : PlayDirection::forward);
   std::size_t held = 0;
-  for (const LaserScan& scan : stream.scans) {
-    const double since_first = sign * (scan.timestamp - t_first);
-    if (since_first < elapsed) ++held;
-    elapsed = std::max(elapsed, since_first);
-    stream.clock.push_back(a.start + elapsed);
+  for (std::size_t i = 0; i < elapsed.size(); ++i) {
+    held += elapsed[i] > sign * (stream.scans[i].timestamp - t_first) ? 1 : 0;
+    stream.clock.push_back(a.start + elapsed[i]);
   }
   if (held > 0) {
     warnings.push_back(fmt::format(
@@ -266,7 +261,7 @@ LoadedAgents load_agents(const ScenarioFile& f, const YAML::Node& root, const Lo
       if (other.name == a.name) f.fail(node["name"], a.context, "name", fmt::format("'{}' is already the name of {}", a.name, other.context.substr(0, other.context.size() - 1)));
     }
     if (!node["log"]) f.fail_missing(node, a.context, "log", "the log file this agent plays");
-    a.log = f.existing_file(node["log"], a.context, "log");
+    a.log = f.existing_file(node["log"], a.context, "log", true);
     if (const YAML::Node d = node["direction"]) {
       const std::string dir = f.text(d, a.context, "direction");
       if (dir != "forward" && dir != "backward") {
@@ -400,10 +395,7 @@ std::vector<EncounterEvent> load_encounters(const ScenarioFile& f, const YAML::N
   return events;
 }
 
-}  // namespace
-
-SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogReadOptions& read) {
-  const YAML::Node root = load_root(yaml);
+SwarmScenario build_scenario(const YAML::Node& root, const fs::path& yaml, const LogReadOptions& read) {
   const ScenarioFile f(yaml.string());
   f.check_keys(root, "", "a scenario", {"name", "config", "relations", "agents", "encounters"});
 
@@ -415,6 +407,19 @@ SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogRe
   scenario.events = load_encounters(f, root, agents, scenario.warnings);
   scenario.streams = std::move(agents.streams);
   return scenario;
+}
+
+}  // namespace
+
+SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogReadOptions& read) {
+  std::error_code ec;
+  if (!fs::is_regular_file(yaml, ec)) throw InputError(fmt::format("{}: scenario file not found", yaml.string()));
+  return build_scenario(load_root(yaml, [&] { return YAML::LoadFile(yaml.string()); }), yaml, read);
+}
+
+SwarmScenario parse_swarm_scenario(const std::string& text, const std::filesystem::path& yaml,
+                                   const LogReadOptions& read) {
+  return build_scenario(load_root(yaml, [&] { return YAML::Load(text); }), yaml, read);
 }
 
 }  // namespace dsswarm

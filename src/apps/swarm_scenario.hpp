@@ -28,8 +28,9 @@
 //   start + max over j <= i of (t_j − t_first)   (forward)
 //   start + max over j <= i of (t_first − t_j)   (backward)
 // where t_first is the timestamp of its first played scan (for a backward
-// agent, the segment's last). The running maximum keeps the clock
-// non-decreasing where timestamps run backwards; such scans are counted in a warning.
+// agent, the segment's last): the play clock (sensor/play_clock.hpp) plus the
+// start. The running maximum keeps the clock non-decreasing where timestamps
+// run backwards; such scans are counted in a warning.
 //
 // Encounters by log_times. The session time is the clock of the first agent's
 // scan nearest to the given log time (within 1 ms of the segment's span), so
@@ -45,7 +46,7 @@
 #include <vector>
 
 #include "io/logs/log_reader.hpp"
-#include "swarm/swarm_session.hpp"
+#include "protocol/swarm_session.hpp"
 
 namespace dsswarm {
 
@@ -60,5 +61,10 @@ struct SwarmScenario {
 
 // Reads the scenario and every log it names (each distinct log once).
 SwarmScenario load_swarm_scenario(const std::filesystem::path& yaml, const LogReadOptions& read = {});
+
+// The same for the scenario's text in memory; `yaml` stands for its path:
+// errors name it and relative paths are resolved against its folder.
+SwarmScenario parse_swarm_scenario(const std::string& text, const std::filesystem::path& yaml,
+                                   const LogReadOptions& read = {});
 
 }  // namespace dsswarm

@@ -229,7 +229,7 @@ TEST(SwarmScenario, MissingScenarioFileIsAnInputError) {
 // each encounter both robots have just played the scans its log_times name
 // (the picking script aligned the start times to make that exact).
 TEST(SwarmScenarioRealData, ShippedScenariosLoadWithEncountersWhereTheySay) {
-  const fs::path scenarios = fs::path(__FILE__).parent_path() / ".." / ".." / "scenarios";
+  const fs::path scenarios = fs::path(DSSWARM_SOURCE_DIR) / "scenarios";
   const fs::path data(DSSWARM_SHARED_DATA);
   if (!fs::exists(data / "carmen" / "intel.log.gz")) GTEST_SKIP() << "real data not found at " << data;
   std::vector<fs::path> files;
@@ -259,6 +259,27 @@ TEST(SwarmScenarioRealData, ShippedScenariosLoadWithEncountersWhereTheySay) {
         EXPECT_NEAR(played, wanted, 1e-3) << "encounter " << k << ", agent " << stream.name;
       }
     }
+  }
+}
+
+TEST(SwarmScenario, TextInMemoryReadsAsTheFileDoes) {
+  const fs::path file = scenario_with("in_memory", kTwoRobots);
+  const SwarmScenario from_file = load_swarm_scenario(file);
+  // The text is parsed as if it were the file: same folder for the logs, same name.
+  const SwarmScenario from_text = parse_swarm_scenario(kTwoRobots, file);
+  EXPECT_EQ(from_text.name, "scenario");
+  ASSERT_EQ(from_text.streams.size(), from_file.streams.size());
+  for (std::size_t i = 0; i < from_text.streams.size(); ++i) {
+    EXPECT_EQ(stamps_of(from_text.streams[i]), stamps_of(from_file.streams[i])) << i;
+    EXPECT_EQ(from_text.streams[i].clock, from_file.streams[i].clock) << i;
+  }
+  EXPECT_EQ(from_text.warnings, from_file.warnings);
+  const fs::path typed = file.parent_path() / "typed.yaml";
+  try {
+    parse_swarm_scenario("agents: [", typed);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(typed.string() + ": line 1:", 0), 0u) << e.what();
   }
 }
 

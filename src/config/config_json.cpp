@@ -1,7 +1,10 @@
 #include "config/config_json.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <type_traits>
@@ -64,10 +67,40 @@ json to_json_value(const T& v) {
   return json(v);
 }
 
+// A whole-number field. nlohmann's get<int>() truncates 2.5 to 2, wraps
+// 4294967298 to 2, reads true as 1, and converting 1e10 to int is undefined
+// behaviour (found by fuzzing): only whole numbers in range are taken.
+template <typename T>
+T whole_number(const json& j) {
+  const auto refuse = [&] {
+    return std::invalid_argument(fmt::format("must be a whole number from {} to {} (got {})",
+                                             std::numeric_limits<T>::min(), std::numeric_limits<T>::max(), j.dump()));
+  };
+  if (j.is_number_unsigned() || j.is_number_integer()) {
+    const bool in_range = j.is_number_unsigned() ? std::in_range<T>(j.get<std::uint64_t>())
+                                                 : std::in_range<T>(j.get<std::int64_t>());
+    if (!in_range) throw refuse();
+    return j.is_number_unsigned() ? static_cast<T>(j.get<std::uint64_t>()) : static_cast<T>(j.get<std::int64_t>());
+  }
+  if (j.is_number_float()) {
+    const double v = j.get<double>();
+    const double end = std::ldexp(1.0, std::numeric_limits<T>::digits);  // one past the largest T
+    if (v != std::trunc(v) || v < static_cast<double>(std::numeric_limits<T>::min()) || v >= end) throw refuse();
+    return static_cast<T>(v);
+  }
+  throw refuse();
+}
+
 template <typename T, typename Member>
 Field field(Member member) {
   return {[member](const SwarmConfig& c) { return to_json_value<T>(std::invoke(member, c)); },
-          [member](const json& j, SwarmConfig& c) { std::invoke(member, c) = j.get<T>(); }};
+          [member](const json& j, SwarmConfig& c) {
+            if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+              std::invoke(member, c) = whole_number<T>(j);
+            } else {
+              std::invoke(member, c) = j.get<T>();
+            }
+          }};
 }
 
 // A SLAM field lives in SwarmConfig::slam; a swarm field in SwarmConfig itself.
@@ -209,7 +242,12 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
        {{"remerge_interval", DSS_SWARM_FIELD(double, remerge_interval)},
         {"confirm", DSS_SWARM_FIELD(bool, confirm)},
         {"confirm_xy", DSS_SWARM_FIELD(double, confirm_xy)},
-        {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)}}},
+        {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)},
+        {"exchange_timeout", DSS_SWARM_FIELD(double, exchange_timeout)},
+        {"chunk_bytes", DSS_SWARM_FIELD(std::size_t, chunk_bytes)},
+        {"max_open_encounters", DSS_SWARM_FIELD(std::size_t, max_open_encounters)},
+        {"max_pending_confirmations", DSS_SWARM_FIELD(std::size_t, max_pending_confirmations)},
+        {"max_transfer_bytes", DSS_SWARM_FIELD(std::size_t, max_transfer_bytes)}}},
   };
   return table;
 }
@@ -217,26 +255,28 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
 #undef DSS_FIELD
 #undef DSS_SWARM_FIELD
 
-void load_json_file(const std::filesystem::path& path, json& j) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("cannot open config file " + path.string());
+// `input` is a stream or a string; `source` names it in errors.
+template <typename Input, typename Config>
+void parse_and_apply(Input&& input, const std::string& source, Config& config) {
+  json j;
   try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw ConfigError(path.string() + ": not valid JSON (" + e.what() + ")");
+    j = json::parse(std::forward<Input>(input));
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
+    throw ConfigError(source + ": not valid JSON (" + e.what() + ")");
+  }
+  apply_json(j, config, source);
+  try {
+    config.validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError(source + ": " + e.what());
   }
 }
 
 template <typename Config>
 void load(const std::filesystem::path& path, Config& config) {
-  json j;
-  load_json_file(path, j);
-  apply_json(j, config, path.string());
-  try {
-    config.validate();
-  } catch (const ConfigError& e) {
-    throw ConfigError(path.string() + ": " + e.what());
-  }
+  std::ifstream in(path);
+  if (!in) throw ConfigError("cannot open config file " + path.string());
+  parse_and_apply(in, path.string(), config);
 }
 
 }  // namespace
@@ -286,5 +326,9 @@ void apply_json(const json& j, SlamConfig& config, const std::string& source) {
 void load_config(const std::filesystem::path& path, SwarmConfig& config) { load(path, config); }
 
 void load_slam_config(const std::filesystem::path& path, SlamConfig& config) { load(path, config); }
+
+void parse_config(std::string_view text, const std::string& source, SwarmConfig& config) {
+  parse_and_apply(text, source, config);
+}
 
 }  // namespace dsswarm

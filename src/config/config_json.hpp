@@ -10,9 +10,10 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "slam/slam.hpp"
-#include "swarm/swarm_session.hpp"
+#include "swarm/swarm_config.hpp"
 
 namespace dsswarm {
 
@@ -27,5 +28,8 @@ void apply_json(const nlohmann::json& j, SlamConfig& config, const std::string& 
 // Reads a JSON file and applies it on top of `config` (then validates).
 void load_config(const std::filesystem::path& path, SwarmConfig& config);
 void load_slam_config(const std::filesystem::path& path, SlamConfig& config);
+
+// The same as load_config for JSON text in memory; `source` names it in errors.
+void parse_config(std::string_view text, const std::string& source, SwarmConfig& config);
 
 }  // namespace dsswarm

@@ -107,5 +107,65 @@ TEST(SlamConfigJson, FileWithOutOfRangeValueFailsValidation) {
   }
 }
 
+TEST(SwarmConfigJson, ParsesTextInMemoryAsItLoadsFiles) {
+  SwarmConfig c;
+  parse_config(R"({"map": {"levels": 2}, "swarm": {"confirm": false}})", "inline.json", c);
+  EXPECT_EQ(c.slam.map.levels, 2);
+  EXPECT_FALSE(c.confirm);
+  for (const char* bad : {"{ not json", R"({"map": {"levels": 0}})", R"({"mapp": {}})"}) {
+    try {
+      parse_config(bad, "inline.json", c);
+      ADD_FAILURE() << "expected ConfigError for " << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("inline.json: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+// Found by fuzzing (fuzz/config.cpp): nlohmann's parser reports a number too
+// large for a double as out_of_range, not parse_error, which escaped as a
+// plain std::exception.
+TEST(SwarmConfigJson, NumberTooLargeForADoubleIsAConfigError) {
+  SwarmConfig c;
+  try {
+    parse_config(R"({"swarm": {"confirm_xy": 1e400}})", "huge.json", c);
+    ADD_FAILURE() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.json: not valid JSON"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e400"), std::string::npos) << e.what();
+  }
+  const std::filesystem::path p = std::filesystem::path(DSSWARM_TEST_TMP) / "huge.json";
+  std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p) << R"({"map": {"resolution": -1e400}})";
+  EXPECT_THROW(load_config(p, c), ConfigError);
+}
+
+// Found by fuzzing (fuzz/config.cpp): 9.1e92 for an int field was converted
+// with undefined behaviour; 2.5, 4294967298 and true were silently read as 2, 2, 1.
+TEST(SwarmConfigJson, WholeNumberFieldsTakeOnlyWholeNumbersInRange) {
+  SwarmConfig c;
+  parse_config(R"({"map": {"levels": 2.0}, "slam": {"seed": 18446744073709551615}})", "ok.json", c);
+  EXPECT_EQ(c.slam.map.levels, 2);
+  EXPECT_EQ(c.slam.seed, 18446744073709551615ULL);
+  for (const char* value : {"9.1e92", "2.5", "4294967298", "-2147483649", "true", "\"2\""}) {
+    const std::string text = std::string(R"({"map": {"levels": )") + value + "}}";
+    try {
+      parse_config(text, "bad.json", c);
+      ADD_FAILURE() << "expected ConfigError for " << value;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.json: 'map.levels' must be a whole number"), std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    parse_config(R"({"slam": {"seed": -1}})", "bad.json", c);
+    ADD_FAILURE() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("'slam.seed' must be a whole number from 0 to 18446744073709551615"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm

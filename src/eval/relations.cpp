@@ -48,14 +48,18 @@ MeanStd mean_and_std(const std::vector<double>& values) {
 
 }  // namespace
 
-std::vector<Relation> read_relations(const std::filesystem::path& path) {
-  std::ifstream in = open_text_input(path, "relations");
+std::vector<Relation> read_relations(std::istream& in, const std::string& source_name) {
   std::vector<Relation> relations;
-  for_each_data_line(in, path.string(), [&](std::string_view line, const std::string& where) {
+  for_each_data_line(in, source_name, [&](std::string_view line, const std::string& where) {
     relations.push_back(parse_relation_line(line, where));
   });
-  if (relations.empty()) throw InputError(fmt::format("{}: no relations found", path.string()));
+  if (relations.empty()) throw InputError(fmt::format("{}: no relations found", source_name));
   return relations;
+}
+
+std::vector<Relation> read_relations(const std::filesystem::path& path) {
+  std::ifstream in = open_text_input(path, "relations");
+  return read_relations(in, path.string());
 }
 
 RelationMetrics evaluate_relations(const Trajectory& estimate, const std::vector<Relation>& relations,

@@ -6,6 +6,8 @@
 // map's reference frame.
 #include <cstddef>
 #include <filesystem>
+#include <istream>
+#include <string>
 #include <vector>
 
 #include "geometry/pose2.hpp"
@@ -26,6 +28,9 @@ struct Relation {
 // Throws InputError naming file:line (and the field) for malformed lines, and
 // for a file without any relation.
 std::vector<Relation> read_relations(const std::filesystem::path& path);
+
+// Same, from a stream; `source_name` stands for the file name in errors.
+std::vector<Relation> read_relations(std::istream& in, const std::string& source_name);
 
 struct RelationMetrics {
   double trans_mean = 0.0;    // metres

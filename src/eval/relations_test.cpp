@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "common/errors.hpp"
@@ -273,6 +274,19 @@ TEST(EvaluateRelations, JsonHasExactlyTheDocumentedKeys) {
   EXPECT_EQ(j.at("rot_std_deg").get<double>(), 1.5);
   EXPECT_EQ(j.at("used").get<std::size_t>(), 7u);
   EXPECT_EQ(j.at("missing").get<std::size_t>(), 2u);
+}
+
+TEST(ReadRelations, ReadsFromAStreamNamingItsSource) {
+  std::istringstream good("FLOAT 10.5 11.25 0.4 -0.1 0 0 0 -0.07\n");
+  const auto rel = read_relations(good, "memory");
+  ASSERT_EQ(rel.size(), 1u);
+  EXPECT_DOUBLE_EQ(rel[0].motion.theta, -0.07);
+  std::istringstream bad("# comment\n1 2 0 0 0 0 0 nan\n");
+  std::string msg = input_error_message([&] { read_relations(bad, "memory"); });
+  EXPECT_NE(msg.find("memory:2"), std::string::npos) << msg;
+  std::istringstream empty("");
+  msg = input_error_message([&] { read_relations(empty, "memory"); });
+  EXPECT_EQ(msg, "memory: no relations found");
 }
 
 }  // namespace

@@ -108,7 +108,7 @@ TEST(FilterCommand, PlotIsAPngOfTheDecisionsOverTime) {
            (static_cast<unsigned char>(head[at + 2]) << 8) | static_cast<unsigned char>(head[at + 3]);
   };
   EXPECT_EQ(be32(16), 1600);
-  EXPECT_EQ(be32(20), 430);
+  EXPECT_EQ(be32(20), 590);
 }
 
 TEST(FilterCommand, OptionsReachTheFilter) {
@@ -121,6 +121,29 @@ TEST(FilterCommand, OptionsReachTheFilter) {
   // Fixed window 5 without odometry: 5 kept, then 5 times 5 dropped + 1 kept, then 5 dropped.
   const auto summary = nlohmann::json::parse(last_line(fixed));
   EXPECT_EQ(summary.at("scans_kept"), 5 + 5);
+}
+
+// `--config FILE` as for the other commands: the file's filter section, then the flags given.
+TEST(FilterCommand, ConfigFileSectionFilterThenFlags) {
+  const fs::path dir = fresh_dir("filter_cli_config");
+  const fs::path log = write_standing_log(dir);
+  const fs::path config =
+      test::write_text(dir / "c.json", R"({"filter": {"max_consecutive_drops": 0, "min_window": 2}})");
+  const auto dropped = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"filter", log.string(), "--out", (dir / "kept.log").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return nlohmann::json::parse(last_line(run_cli(args))).at("scans_dropped").get<int>();
+  };
+  EXPECT_EQ(dropped({}), 25);
+  EXPECT_EQ(dropped({"--config", config.string()}), 0);                      // the file's 0 drops in a row
+  EXPECT_EQ(dropped({"--config", config.string(), "--max-drops", "5"}), 25);  // a flag beats the file
+  const fs::path typo = test::write_text(dir / "typo.json", R"({"filter": {"max_drops": 0}})");
+  try {
+    run_cli({"filter", log.string(), "--out", (dir / "kept.log").string(), "--config", typo.string()});
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_drops"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FilterCommand, BadValuesAreConfigErrorsNamingTheField) {
@@ -141,7 +164,7 @@ TEST(FilterCommand, BadValuesAreConfigErrorsNamingTheField) {
   }
   EXPECT_THROW(run_cli({"filter", log.string(), "--out", out, "--columns", "1"}), ConfigError);
   EXPECT_THROW(run_cli({"filter", log.string(), "--out", out, "--statistic", "mode"}), CLI::ValidationError);
-  EXPECT_THROW(run_cli({"filter", (dir / "missing.log").string(), "--out", out}), CLI::ValidationError);
+  EXPECT_THROW(run_cli({"filter", (dir / "missing.log").string(), "--out", out}), InputError);  // input: exit 1
   EXPECT_FALSE(fs::exists(out));
 }
 

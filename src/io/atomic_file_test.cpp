@@ -52,5 +52,45 @@ TEST(AtomicFile, MissingDirectoryIsAClearError) {
   }
 }
 
+TEST(AtomicFile, ErrorsNameTheFileNotTheTemporary) {
+  try {
+    write_file_atomically("/proc/dsswarm_atomic_test", "x");  // /proc takes no new files, not even as root
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cannot write /proc/dsswarm_atomic_test"), std::string::npos) << message;
+    EXPECT_EQ(message.find(".tmp"), std::string::npos) << message;
+  }
+}
+
+TEST(OutputFiles, WritesEveryFileCreatingFolders) {
+  const fs::path dir = fresh_dir("output_files_all");
+  OutputFiles files;
+  files.add(dir / "a.txt", "a");
+  files.add(dir / "sub" / "b.txt", "b");
+  files.add(dir / "a.txt", "a2");  // replaces the first
+  ASSERT_EQ(files.files().size(), 2u);
+  files.write_all();
+  EXPECT_EQ(slurp(dir / "a.txt"), "a2");
+  EXPECT_EQ(slurp(dir / "sub" / "b.txt"), "b");
+}
+
+TEST(OutputFiles, OneFailureWritesNothing) {
+  const fs::path dir = fresh_dir("output_files_none");
+  write_file_atomically(dir / "a.txt", "old");
+  write_file_atomically(dir / "blocker", "a file where a folder is needed");
+  OutputFiles files;
+  files.add(dir / "a.txt", "new");
+  files.add(dir / "blocker" / "b.txt", "b");
+  try {
+    files.write_all();
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("blocker"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "a.txt"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // no temporaries
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -44,23 +44,39 @@ std::string placement_problem(const RelativePoseResult& r, const EncounterConfig
 
 }  // namespace
 
-EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView& b, const EncounterConfig& config,
-                                     std::uint64_t seed) {
+PeerPlacement locate_peer(const EncounterView& self, const EncounterView& peer, const EncounterConfig& config,
+                          std::uint64_t seed) {
   config.validate();
-  if (!a.map || !b.map) throw ConfigError("estimate_encounter: both views need a map");
+  if (!self.map) throw ConfigError("locate_peer: this robot's view needs its map");
+  PeerPlacement p;
+  p.located = locate_scan(*self.map, peer.points, self.pose.translation(), config.locate, seed, peer.surroundings);
+  p.valid = !peer.points.empty();
+  // The merge lines up whole maps, not one scan: a placement this side
+  // trusts is refined with the peer's obstacles out to
+  // merge_surroundings_radius (the decision weighs the result).
+  if (p.valid && !peer.wide_surroundings.empty() && placement_problem(p.located, config, "", "").empty())
+    p.wide = refine_placement(*self.map, peer.points, peer.wide_surroundings, p.located.best.pose, config.locate,
+                              seed + 2)
+                 .pose;
+  return p;
+}
+
+EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, const PeerPlacement& a_locates_b,
+                                   const PeerPlacement& b_locates_a, const EncounterConfig& config) {
+  config.validate();
   EncounterEstimate e;
-  e.a_locates_b = locate_scan(*a.map, b.points, a.pose.translation(), config.locate, seed, b.surroundings);
-  e.b_locates_a = locate_scan(*b.map, a.points, b.pose.translation(), config.locate, seed + 1, a.surroundings);
-  if (b.points.empty() || a.points.empty()) {
+  e.a_locates_b = a_locates_b.located;
+  e.b_locates_a = b_locates_a.located;
+  if (!a_locates_b.valid || !b_locates_a.valid) {
     e.reason = "a robot has no valid scan points";
     return e;
   }
   // Both directions as estimates of B's frame in A's frame.
-  const Pose2 from_a = e.a_locates_b.best.pose * b.pose.inverse();
-  const Pose2 from_b = (e.b_locates_a.best.pose * a.pose.inverse()).inverse();
+  const Pose2 from_a = e.a_locates_b.best.pose * b_pose.inverse();
+  const Pose2 from_b = (e.b_locates_a.best.pose * a_pose.inverse()).inverse();
   // Compare where each puts robot B: the frames' origins may be far away,
   // where a small angle error looks like a large offset.
-  const Pose2 b_by_a = from_a * b.pose, b_by_b = from_b * b.pose;
+  const Pose2 b_by_a = from_a * b_pose, b_by_b = from_b * b_pose;
   e.disagreement_xy = std::hypot(b_by_a.x - b_by_b.x, b_by_a.y - b_by_b.y);
   e.disagreement_theta = std::abs(normalize_angle(b_by_a.theta - b_by_b.theta));
 
@@ -74,22 +90,17 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
     return e;
   }
   // Accepted: the mean of the two estimates of B's pose, expressed as a frame transform.
-  e.b_frame_in_a = e.b_frame_in_a_near = interpolate(b_by_a, b_by_b, 0.5) * b.pose.inverse();
+  e.b_frame_in_a = e.b_frame_in_a_near = interpolate(b_by_a, b_by_b, 0.5) * b_pose.inverse();
   e.accepted = true;
-  if (a.wide_surroundings.empty() || b.wide_surroundings.empty()) return e;
-  // The merge lines up whole maps, not one scan: refine both placements with
-  // each robot's obstacles out to merge_surroundings_radius and take the mean
-  // again. Verification above judged the near placements; the wide fit moves
-  // them by centimetres. A larger move means the maps disagree with each other
+  if (!a_locates_b.wide || !b_locates_a.wide) return e;
+  // Verification above judged the near placements; the wide fit moves them
+  // by centimetres. A larger move means the maps disagree with each other
   // (bent between here and their far parts, or the wide fit latched onto the
   // wrong part): the near estimate, right where the robots are, stands.
-  const Pose2 b_wide = refine_placement(*a.map, b.points, b.wide_surroundings, b_by_a, config.locate, seed + 2).pose;
-  const Pose2 a_in_b = e.b_locates_a.best.pose;
-  const Pose2 a_wide = refine_placement(*b.map, a.points, a.wide_surroundings, a_in_b, config.locate, seed + 3).pose;
-  const Pose2 from_a_wide = b_wide * b.pose.inverse();
-  const Pose2 from_b_wide = (a_wide * a.pose.inverse()).inverse();
-  const Pose2 wide = interpolate(from_a_wide * b.pose, from_b_wide * b.pose, 0.5) * b.pose.inverse();
-  const Pose2 moved = between(e.b_frame_in_a * b.pose, wide * b.pose);
+  const Pose2 from_a_wide = *a_locates_b.wide * b_pose.inverse();
+  const Pose2 from_b_wide = (*b_locates_a.wide * a_pose.inverse()).inverse();
+  const Pose2 wide = interpolate(from_a_wide * b_pose, from_b_wide * b_pose, 0.5) * b_pose.inverse();
+  const Pose2 moved = between(e.b_frame_in_a * b_pose, wide * b_pose);
   e.wide_moved_xy = std::hypot(moved.x, moved.y);
   e.wide_moved_theta = std::abs(normalize_angle(moved.theta));
   if (e.wide_moved_xy > config.agree_xy || e.wide_moved_theta > config.agree_theta) {
@@ -104,6 +115,14 @@ EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView
   }
   e.b_frame_in_a = wide;
   return e;
+}
+
+EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView& b, const EncounterConfig& config,
+                                     std::uint64_t seed) {
+  if (!a.map || !b.map) throw ConfigError("estimate_encounter: both views need a map");
+  const PeerPlacement a_locates_b = locate_peer(a, b, config, seed);
+  const PeerPlacement b_locates_a = locate_peer(b, a, config, seed + 1);
+  return decide_encounter(a.pose, b.pose, a_locates_b, b_locates_a, config);
 }
 
 }  // namespace dsswarm

@@ -9,6 +9,7 @@
 // directions agree (and, with reject_bent_maps, (4) fitting both maps as wholes
 // keeps the transform within that same tolerance). A wrong merge corrupts a
 // map for good; a rejected one costs only a wait for the next encounter.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,30 @@ struct EncounterEstimate {
   double wide_moved_theta = 0.0;  // rad
 };
 
+// One robot's half of an encounter, computed on that robot alone: the other
+// robot's scan (and surroundings) placed in its own map.
+struct PeerPlacement {
+  bool valid = false;          // false: the peer's scan had no valid points
+  RelativePoseResult located;  // the peer's robot in this robot's map frame
+  // `located` refined with the peer's wide surroundings (refine_placement);
+  // set only when `located` passes this side's checks and the peer sent them.
+  std::optional<Pose2> wide;
+};
+
+// `self` is this robot's view (with its map); `peer` what the other robot
+// offered (its map is not needed). `seed` drives the random search: both
+// robots derive theirs from the pair and the encounter (see protocol).
+PeerPlacement locate_peer(const EncounterView& self, const EncounterView& peer, const EncounterConfig& config,
+                          std::uint64_t seed);
+
+// The deterministic decision both robots run on the two placements (A is the
+// robot whose name sorts first): the same inputs give the same answer on
+// either side, so both merge or neither does.
+EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, const PeerPlacement& a_locates_b,
+                                   const PeerPlacement& b_locates_a, const EncounterConfig& config);
+
+// Both halves and the decision in one call (A locates with `seed`, B with
+// `seed + 1`): for tests and benchmarks that hold both robots' views.
 EncounterEstimate estimate_encounter(const EncounterView& a, const EncounterView& b, const EncounterConfig& config,
                                      std::uint64_t seed);
 

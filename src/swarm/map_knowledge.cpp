@@ -31,6 +31,11 @@ bool MapKnowledge::absorb(const MapSnapshot& snapshot, const Pose2& sender_in_se
   return changed;
 }
 
+void MapKnowledge::restore(const MapSnapshot& saved) {
+  for (const MapLayer& layer : saved.layers)
+    if (layer.origin != self_ && layer.map) layers_[layer.origin] = layer;
+}
+
 std::vector<MapLayer> MapKnowledge::layers() const {
   std::vector<MapLayer> out;
   out.reserve(layers_.size());

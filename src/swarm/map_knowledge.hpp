@@ -28,6 +28,10 @@ class MapKnowledge {
   // `sender_in_self` in ours. Returns whether any layer was added or replaced.
   bool absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self);
 
+  // Puts back what a snapshot of this robot (a checkpoint) held, layers as
+  // they were (no hop added); its own layer is not part of the knowledge.
+  void restore(const MapSnapshot& saved);
+
   // The foreign layers, in origin order.
   std::vector<MapLayer> layers() const;
   const MapLayer* find(const std::string& origin) const;

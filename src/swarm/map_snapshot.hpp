@@ -27,6 +27,15 @@ struct MapLayer {
   std::shared_ptr<const MultiResMap> map;
 };
 
+// One layer a robot holds, without its map: whose evidence, and how new
+// (what robots tell each other so that only what is missing is sent).
+struct LayerVersion {
+  std::string origin;
+  std::uint64_t version = 0;
+  std::int32_t hops = 0;
+  bool operator==(const LayerVersion&) const = default;
+};
+
 // What a robot sends at an encounter (and what a .dsmap file holds): layers[0]
 // is the sender's own map (origin == sender, identity pose, hops 0), then what
 // it knows of others, placed in the sender's frame.

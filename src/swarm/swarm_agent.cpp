@@ -2,14 +2,51 @@
 
 #include "swarm/map_merge.hpp"
 
+#include <algorithm>
+
+#include "common/hash.hpp"
+#include "common/rng.hpp"
+
 namespace dsswarm {
+
+namespace {
+
+// A saved snapshot's layer of `self` (its own map); an empty layer if it has none.
+const MapLayer& own_layer_of(const MapSnapshot& saved, const std::string& self) {
+  static const MapLayer none;
+  for (const MapLayer& l : saved.layers)
+    if (l.origin == self) return l;
+  return none;
+}
+
+}  // namespace
+
+SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
+  SlamConfig c = swarm;
+  c.seed = stream_seed(swarm.seed, fnv1a64(name));
+  return c;
+}
 
 SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config)
     : name_(std::move(name)), slam_(config), knowledge_(name_) {}
 
+SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose)
+    : name_(std::move(name)),
+      slam_(config, own_layer_of(saved, name_).map ? MultiResMap(*own_layer_of(saved, name_).map) : MultiResMap(config.map), pose),
+      knowledge_(name_),
+      version_base_(own_layer_of(saved, name_).version) {
+  knowledge_.restore(saved);
+  if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+}
+
 SlamStep SwarmAgent::process(const LaserScan& scan) {
   last_scan_ = scan;
-  return slam_.process(scan);
+  const std::size_t before = own_version();
+  SlamStep step = slam_.process(scan);
+  if (jobs_out_ > 0 && own_version() != before)
+    inserted_since_job_.push_back(
+        {own_version(), step.pose, scan.laser_offset, scan_to_points(scan, slam_.config().points)});
+  return step;
 }
 
 EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
@@ -25,18 +62,55 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   return v;
 }
 
-MapSnapshot SwarmAgent::snapshot() const {
-  if (!own_copy_ || own_copy_version_ != slam_.scans_inserted()) {
+const MultiResMap& SwarmAgent::own_copy() const {
+  if (!own_copy_ || own_copy_version_ != own_version()) {
     own_copy_ = std::make_shared<const MultiResMap>(slam_.own_map());
-    own_copy_version_ = slam_.scans_inserted();
+    own_copy_version_ = own_version();
   }
+  return *own_copy_;
+}
+
+MapSnapshot SwarmAgent::snapshot() const {
+  own_copy();
   return knowledge_.snapshot(own_copy_, own_copy_version_);
+}
+
+std::vector<LayerVersion> SwarmAgent::inventory() const {
+  std::vector<LayerVersion> out{{name_, own_version(), 0}};
+  for (const MapLayer& l : knowledge_.layers()) out.push_back({l.origin, l.version, l.hops});
+  return out;
 }
 
 bool SwarmAgent::merge(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
   if (!knowledge_.absorb(snapshot, sender_in_self)) return false;
   slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
   return true;
+}
+
+bool SwarmAgent::absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
+  return knowledge_.absorb(snapshot, sender_in_self);
+}
+
+SwarmAgent::ComposeJob SwarmAgent::compose_job() const {
+  own_copy();
+  ++jobs_out_;
+  return {own_copy_, own_copy_version_, knowledge_.layers()};
+}
+
+MultiResMap SwarmAgent::compose(const ComposeJob& job) { return compose_working_map(*job.own, job.foreign); }
+
+void SwarmAgent::cancel_job() {
+  jobs_out_ = std::max(0, jobs_out_ - 1);
+  if (jobs_out_ == 0) inserted_since_job_.clear();
+}
+
+void SwarmAgent::install(MultiResMap working, std::size_t own_version) {
+  for (const Inserted& s : inserted_since_job_)
+    if (s.version > own_version) working.insert_scan(s.pose, s.laser_offset, s.points);
+  slam_.replace_working_map(std::move(working));
+  jobs_out_ = std::max(0, jobs_out_ - 1);
+  // A later job's own map is at least this new: older insertions are in it.
+  std::erase_if(inserted_since_job_, [&](const Inserted& s) { return jobs_out_ == 0 || s.version <= own_version; });
 }
 
 }  // namespace dsswarm

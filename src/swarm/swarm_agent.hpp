@@ -15,9 +15,17 @@
 
 namespace dsswarm {
 
+// A robot's SLAM settings: the swarm's, with its own random stream derived
+// from its name (so a robot process and the in-process swarm agree).
+SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name);
+
 class SwarmAgent {
  public:
   SwarmAgent(std::string name, const SlamConfig& config);
+  // Continues from a saved snapshot (a checkpoint): its own layer is the map
+  // it goes on mapping in, from `pose` (a wide search places the first scan);
+  // the others are what it knew. Its own map's version goes on from the saved one.
+  SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose);
 
   SlamStep process(const LaserScan& scan);
 
@@ -31,6 +39,29 @@ class SwarmAgent {
   // Returns whether anything was new.
   bool merge(const MapSnapshot& snapshot, const Pose2& sender_in_self);
 
+  // Merging off the scan path, for a robot process whose scans keep coming:
+  // absorb() takes the layers in at once; compose_job() hands out what the
+  // working map is built from; compose() builds it on any thread (it needs
+  // nothing of the agent); install() swaps it in after replaying the scans
+  // this robot inserted since the job's own map was taken, so no evidence is
+  // lost and none is counted twice. merge() is the three in a row.
+  struct ComposeJob {
+    std::shared_ptr<const MultiResMap> own;
+    std::size_t own_version = 0;  // scans in `own`
+    std::vector<MapLayer> foreign;
+  };
+  bool absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self);
+  ComposeJob compose_job() const;
+  static MultiResMap compose(const ComposeJob& job);
+  void install(MultiResMap working, std::size_t own_version);
+  void cancel_job();  // a job that will never be installed (a newer one superseded it)
+
+  // The layers snapshot() would hold (origin, version, hops), without copying maps.
+  std::vector<LayerVersion> inventory() const;
+  const std::optional<LaserScan>& last_scan() const { return last_scan_; }
+
+  // Scans in its own map, over every run of this robot (a snapshot's version).
+  std::size_t own_version() const { return version_base_ + slam_.scans_inserted(); }
   const std::string& name() const { return name_; }
   const Slam& slam() const { return slam_; }
   const MapKnowledge& knowledge() const { return knowledge_; }
@@ -40,6 +71,17 @@ class SwarmAgent {
   Slam slam_;
   MapKnowledge knowledge_;
   std::optional<LaserScan> last_scan_;
+  std::size_t version_base_ = 0;  // own map version when this run began (resumed)
+  // Scans inserted while a compose job is out (see install).
+  struct Inserted {
+    std::size_t version = 0;  // own_version() after it
+    Pose2 pose;
+    Pose2 laser_offset;
+    std::vector<ScanPoint> points;
+  };
+  std::vector<Inserted> inserted_since_job_;
+  mutable int jobs_out_ = 0;
+  const MultiResMap& own_copy() const;
   // Frozen copy of the own map for snapshots, refreshed when the map grew.
   mutable std::shared_ptr<const MultiResMap> own_copy_;
   mutable std::size_t own_copy_version_ = 0;

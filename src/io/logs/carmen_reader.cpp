@@ -105,8 +105,8 @@ std::size_t count_field(const Where& where, std::string_view token, std::string_
   return static_cast<std::size_t>(value);
 }
 
-// Ranges may be "nan" or "inf": kept as they are (LaserScan treats them as
-// invalid) and counted for a warning.
+// Ranges may be "nan", "inf" or negative: kept as they are (LaserScan treats
+// them as invalid) and counted for a warning.
 void read_ranges(const Where& where, const Tokens& fields, std::size_t first, std::size_t n,
                  std::vector<float>& ranges) {
   ranges.resize(n);
@@ -135,6 +135,12 @@ struct LaserRecord {
 struct Param {
   double value = 0.0;
   std::size_t line = 0;
+};
+
+struct BadParam {
+  std::string key;
+  std::size_t line = 0;
+  std::string problem;
 };
 
 struct Params {
@@ -207,10 +213,11 @@ class CarmenParser {
                        (empty_scans_ > 0 ? fmt::format(" ({} records have 0 readings)", empty_scans_) : ""));
     }
     note_ignored_streams(chosen_type, log.warnings);
+    check_bad_params(chosen_type, chosen->front().has_own_geometry, log.warnings);
     const Pose2 offset = laser_offset(*chosen, log.warnings);
     const auto [range_min, range_max] = range_limits();
 
-    std::size_t nonfinite = 0;
+    std::size_t nonfinite = 0, negative = 0;
     std::size_t backwards = 0;
     log.scans.reserve(chosen->size());
     for (LaserRecord& record : *chosen) {
@@ -230,6 +237,8 @@ class CarmenParser {
       scan.laser_offset = offset;
       nonfinite += static_cast<std::size_t>(
           std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return !std::isfinite(r); }));
+      negative += static_cast<std::size_t>(
+          std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return std::isfinite(r) && r < 0.0f; }));
       if (!log.scans.empty() && scan.timestamp < log.scans.back().timestamp) ++backwards;
       log.scans.push_back(std::move(scan));
     }
@@ -245,6 +254,10 @@ class CarmenParser {
     if (nonfinite > 0) {
       log.warnings.push_back(fmt::format("{}: {} range readings are NaN or inf (kept; they count as invalid beams)",
                                          file_, nonfinite));
+    }
+    if (negative > 0) {
+      log.warnings.push_back(fmt::format("{}: {} range readings are negative (kept; they count as invalid beams)",
+                                         file_, negative));
     }
     if (empty_scans_ > 0) {
       log.warnings.push_back(fmt::format("{}: skipped {} laser records with 0 readings", file_, empty_scans_));
@@ -396,16 +409,52 @@ class CarmenParser {
     }
     for (const auto& [name, slot] : numeric) {
       if (key != name) continue;
-      if (fields_.size() < 3) where.fail(fmt::format("{}: missing value", name));
-      Param param{finite_field(where, fields_[2], name), line};
-      if (slot == &params_.num_beams &&
-          (param.value < 1.0 || param.value != std::floor(param.value) || param.value > 1e7)) {
-        where.fail(fmt::format("laser_num_beams must be a positive whole number, got '{}'", shown(fields_[2])));
+      double value = 0.0;
+      const std::string problem = param_problem(slot, value);
+      if (problem.empty()) {
+        *slot = Param{value, line};
+      } else {
+        bad_params_.push_back({std::string(name), line, problem});  // fatal only where the value is used
       }
-      if (slot == &params_.angle_increment && param.value == 0.0) where.fail("laser_angle_increment must not be 0");
-      *slot = param;
       return;
     }
+  }
+
+  // Parses the value of the PARAM line in fields_; says what is wrong with it ("" if nothing).
+  std::string param_problem(const std::optional<Param>* slot, double& value) const {
+    if (fields_.size() < 3) return "missing value";
+    if (!parse_whole(fields_[2], value)) return fmt::format("'{}' is not a number", shown(fields_[2]));
+    if (!std::isfinite(value)) return fmt::format("'{}' is not finite", shown(fields_[2]));
+    if (slot == &params_.num_beams && (value < 1.0 || value != std::floor(value) || value > 1e7))
+      return fmt::format("'{}' is not a positive whole number", shown(fields_[2]));
+    if (slot == &params_.angle_increment && value == 0.0) return "must not be 0";
+    return "";
+  }
+
+  // A broken `# PARAM` line is an error where its value would be used, else
+  // a warning: the records carry their own geometry (ROBOTLASER1), an option
+  // overrides it, or the scan poses give the laser offset instead.
+  void check_bad_params(std::string_view type, bool own_geometry, std::vector<std::string>& warnings) {
+    for (const BadParam& bad : bad_params_) {
+      const std::string what = fmt::format("{}:{}: # PARAM {}: {}", file_, bad.line, bad.key, bad.problem);
+      const std::string why_unused = unused_reason(bad.key, type, own_geometry);
+      if (why_unused.empty()) throw InputError(what);
+      warnings.push_back(fmt::format("{}; ignored ({})", what, why_unused));
+      if (bad.key.starts_with("laser_offset")) params_.offset_x = params_.offset_y = params_.offset_theta = {};
+    }
+  }
+
+  std::string unused_reason(const std::string& key, std::string_view type, bool own_geometry) const {
+    if (key.starts_with("laser_offset")) {
+      if (options_.laser_offset) return "the laser offset option overrides it";
+      if (!params_.no_odometry) return "the laser offset comes from the scan poses instead";
+      return "";
+    }
+    if (key == "laser_range_min") return "";  // applies to every record
+    if (own_geometry) return fmt::format("the {} records state their own beam layout and range", type);
+    if (key != "laser_range_max" && options_.beams != CarmenOptions::BeamConvention::FromParams)
+      return "the beam convention option overrides it";
+    return "";
   }
 
   BeamGeometry beam_geometry(std::size_t n, std::size_t line, std::string_view type) const {
@@ -504,6 +553,7 @@ class CarmenParser {
   const CarmenOptions& options_;
   Tokens fields_;
   Params params_;
+  std::vector<BadParam> bad_params_;
   std::vector<LaserRecord> flaser_, rlaser_, robotlaser_;
   std::size_t empty_scans_ = 0;
   std::size_t odom_count_ = 0;
@@ -520,6 +570,19 @@ SensorLog read_carmen(const std::filesystem::path& path, const CarmenOptions& op
   CarmenParser parser(reader.name(), options);
   std::string_view line;
   while (reader.next(line)) parser.parse_line(line, reader.line_number());
+  return parser.finish();
+}
+
+SensorLog parse_carmen(std::string_view text, const std::string& source_name, const CarmenOptions& options) {
+  CarmenParser parser(source_name, options);
+  std::size_t line_number = 0;
+  while (!text.empty()) {
+    const std::size_t newline = std::min(text.find('\n'), text.size());
+    std::string_view line = text.substr(0, newline);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    parser.parse_line(line, ++line_number);
+    text.remove_prefix(std::min(newline + 1, text.size()));
+  }
   return parser.finish();
 }
 

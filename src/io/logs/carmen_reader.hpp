@@ -24,6 +24,8 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "geometry/pose2.hpp"
 #include "sensor/laser_scan.hpp"
@@ -61,5 +63,9 @@ inline constexpr double kCarmenDefaultRangeMax = 80.0;
 // naming the file, and the line and field where it applies, for a missing,
 // truncated or malformed file or one without laser scans.
 SensorLog read_carmen(const std::filesystem::path& path, const CarmenOptions& options = {});
+
+// The same for a log already in memory (uncompressed text, lines ending in
+// \n or \r\n); `source_name` stands for the file name in errors and warnings.
+SensorLog parse_carmen(std::string_view text, const std::string& source_name, const CarmenOptions& options = {});
 
 }  // namespace dsswarm

@@ -127,6 +127,35 @@ TEST(CarmenReader, BadParamValueNamesKeyAndLine) {
   EXPECT_NE(message.find("eighty"), std::string::npos) << message;
 }
 
+// A `# PARAM` line is a comment: a broken one stops the run only where its value would be used.
+TEST(CarmenReader, BadParamThatIsNotNeededIsAWarning) {
+  const fs::path dir = scratch_dir("params_unused");
+  const std::string robotlaser =
+      "ROBOTLASER1 0 -1.0 2.0 0.5 40.0 0.01 0 5 1 2 3 4 5 0 0.1 0 0 0 0 0 0.1 0.2 0.3 0.4 0.5 7.25 host 0.5\n";
+  write_plain(dir / "own.log", "# PARAM laser_angle_min abc\n# PARAM laser_range_max\n# PARAM laser_offset_x 1e999\n" +
+                                   robotlaser);
+  const SensorLog own = read_carmen(dir / "own.log");
+  ASSERT_EQ(own.scans.size(), 1u);
+  EXPECT_DOUBLE_EQ(own.scans[0].angle_min, -1.0);
+  EXPECT_NEAR(own.scans[0].laser_offset.x, 0.1, 1e-9);  // from the record's laser and robot poses
+  const std::string file = (dir / "own.log").string();
+  EXPECT_TRUE(has_warning(own, file + ":1: # PARAM laser_angle_min: 'abc' is not a number; ignored"))
+      << all_warnings(own);
+  EXPECT_TRUE(has_warning(own, file + ":2: # PARAM laser_range_max: missing value; ignored")) << all_warnings(own);
+  EXPECT_TRUE(has_warning(own, file + ":3: # PARAM laser_offset_x:")) << all_warnings(own);
+
+  // FLASER records use the PARAM geometry, unless an option overrides it.
+  write_plain(dir / "flaser.log",
+              "# PARAM laser_angle_increment x\n# PARAM laser_offset_y ?\n" + flaser(beams(5), 1.0));
+  EXPECT_NE(error_of(dir / "flaser.log").find(":1: # PARAM laser_angle_increment"), std::string::npos);
+  CarmenOptions classic;
+  classic.beams = CarmenOptions::BeamConvention::Classic;
+  const SensorLog overridden = read_carmen(dir / "flaser.log", classic);
+  EXPECT_TRUE(has_warning(overridden, ":1: # PARAM laser_angle_increment: 'x' is not a number; ignored"))
+      << all_warnings(overridden);
+  EXPECT_TRUE(has_warning(overridden, ":2: # PARAM laser_offset_y")) << all_warnings(overridden);
+}
+
 TEST(CarmenReader, ClassicBeamConventionWithoutParams) {
   const fs::path dir = scratch_dir("classic");
   struct Case {
@@ -378,6 +407,19 @@ TEST(CarmenReader, NanAndInfRangesStayAndWarn) {
   EXPECT_TRUE(has_warning(log, ": 4 range readings are NaN or inf")) << all_warnings(log);
 }
 
+TEST(CarmenReader, NegativeRangesStayAndWarn) {
+  const fs::path path = scratch_dir("negative") / "a.log";
+  write_plain(path, flaser({"1.0", "-0.5", "-inf", "2.0"}, 1.0) + flaser({"-3", "1", "1", "1"}, 2.0));
+  const SensorLog log = read_carmen(path);
+  ASSERT_EQ(log.scans.size(), 2u);
+  EXPECT_FLOAT_EQ(log.scans[0].ranges[1], -0.5f);
+  EXPECT_EQ(log.scans[0].valid_count(), 2u);
+  // -inf is counted once, with the non-finite readings.
+  EXPECT_TRUE(has_warning(log, ": 2 range readings are negative (kept; they count as invalid beams)"))
+      << all_warnings(log);
+  EXPECT_TRUE(has_warning(log, ": 1 range readings are NaN or inf")) << all_warnings(log);
+}
+
 TEST(CarmenReader, WindowsLineEndingsAndTabs) {
   const fs::path path = scratch_dir("crlf") / "a.log";
   write_plain(path, "# PARAM laser_range_max 12\r\nFLASER\t3 1 2 3\t0 0 0 0 0 0 5.0 host 0\r\n  \r\n");
@@ -511,6 +553,34 @@ TEST(CarmenReaderRealData, ClassicClfMatchesConvertedLog) {
     EXPECT_EQ(clf.scans[i].ranges, converted.scans[i].ranges) << "scan " << i;
     EXPECT_NEAR(clf.scans[i].timestamp, converted.scans[i].timestamp, 1e-6) << "scan " << i;
     EXPECT_NEAR(clf.scans[i].odometry->x, converted.scans[i].odometry->x, 1e-6) << "scan " << i;
+  }
+}
+
+TEST(CarmenReader, ParsesTextInMemoryAsItReadsFiles) {
+  std::string text = "# PARAM laser_range_max 12\r\n" + flaser(beams(3), 1.0) + odom(1.5) +
+                     flaser({"1", "inf", "3"}, 0.5, Pose2(0.5, 0.0, 0.1));
+  text.pop_back();  // the last line without its newline
+  const fs::path path = scratch_dir("in_memory") / "a.log";
+  write_plain(path, text);
+  const SensorLog from_file = read_carmen(path);
+  const SensorLog from_text = parse_carmen(text, path.string());
+  ASSERT_EQ(from_text.scans.size(), 2u);
+  ASSERT_EQ(from_text.scans.size(), from_file.scans.size());
+  for (std::size_t i = 0; i < from_text.scans.size(); ++i) {
+    EXPECT_EQ(from_text.scans[i].ranges, from_file.scans[i].ranges) << i;
+    EXPECT_EQ(from_text.scans[i].timestamp, from_file.scans[i].timestamp) << i;
+    EXPECT_EQ(from_text.scans[i].range_max, 12.0) << i;
+    ASSERT_TRUE(from_text.scans[i].odometry) << i;
+    EXPECT_EQ(from_text.scans[i].odometry->x, from_file.scans[i].odometry->x) << i;
+  }
+  EXPECT_EQ(from_text.warnings, from_file.warnings);
+  EXPECT_TRUE(has_warning(from_text, "1 of 2 scan timestamps run backwards")) << all_warnings(from_text);
+
+  try {
+    parse_carmen("\nFLASER 3 1 2x 3 0 0 0 0 0 0 2.0 host 0\n", "memory.log");
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory.log:2: FLASER", 0), 0u) << e.what();  // file:line of the text
   }
 }
 

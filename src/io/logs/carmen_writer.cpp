@@ -95,25 +95,19 @@ void write_flaser(std::string& out, const LaserScan& scan, double first_timestam
 
 }  // namespace
 
-void write_carmen(const std::filesystem::path& path, const std::vector<LaserScan>& scans,
-                  const std::string& comment) {
+std::string format_carmen(const std::filesystem::path& path, const std::vector<LaserScan>& scans,
+                          const std::string& comment) {
   if (scans.empty()) throw InputError("cannot write " + path.string() + ": no scans to write");
   check_scans(path, scans);
-  write_file_atomically(path, [&](std::ostream& stream) {
-    std::string chunk;
-    write_header(chunk, scans, comment);
-    // Format in batches: one string per scan would be slow, one for the whole
-    // log would double the memory of big logs.
-    constexpr std::size_t kFlushBytes = 1 << 20;
-    for (const LaserScan& scan : scans) {
-      write_flaser(chunk, scan, scans.front().timestamp);
-      if (chunk.size() >= kFlushBytes) {
-        stream.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-        chunk.clear();
-      }
-    }
-    stream.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-  });
+  std::string text;
+  write_header(text, scans, comment);
+  for (const LaserScan& scan : scans) write_flaser(text, scan, scans.front().timestamp);
+  return text;
+}
+
+void write_carmen(const std::filesystem::path& path, const std::vector<LaserScan>& scans,
+                  const std::string& comment) {
+  write_file_atomically(path, format_carmen(path, scans, comment));
 }
 
 }  // namespace dsswarm

@@ -22,4 +22,8 @@ namespace dsswarm {
 void write_carmen(const std::filesystem::path& path, const std::vector<LaserScan>& scans,
                   const std::string& comment = "");
 
+// The file write_carmen writes, as text; errors name `path`.
+std::string format_carmen(const std::filesystem::path& path, const std::vector<LaserScan>& scans,
+                          const std::string& comment = "");
+
 }  // namespace dsswarm

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "common/errors.hpp"
+#include "io/rosbag2/rosbag2_reader.hpp"
 
 // The bag reader is a separate, optional target (it needs ROS packages); this
 // build knows about it only when CMake found that target.
@@ -25,9 +26,11 @@ bool is_bag(const std::filesystem::path& path) {
 }  // namespace
 
 SensorLog read_log(const std::filesystem::path& path, const LogReadOptions& options) {
+  const BagReadOptions bag{options.scan_topic, options.odom_topic, options.use_tf_odometry, options.odom_topic_named};
+  if (is_rosbag2_path(path)) return read_rosbag2(path, bag);
   if (is_bag(path)) {
 #ifdef DSSWARM_LOGS_READ_BAGS
-    return read_rosbag(path, RosbagOptions{options.scan_topic, options.odom_topic, options.use_tf_odometry});
+    return read_rosbag(path, bag);
 #else
     throw InputError(path.string() + ": ROS bag support was not built (configure with DSSWARM_WITH_ROSBAG=ON "
                                      "and the ROS rosbag_storage packages installed)");

@@ -28,17 +28,6 @@ constexpr int kUnknownPixel = 205;
 // What map_server computes from a (non-negated) pixel value.
 double pixel_occupancy(int value) { return (255.0 - value) / 255.0; }
 
-void check_thresholds(const MapServerOptions& o) {
-  const bool ordered = o.free_thresh > pixel_occupancy(kFreePixel) && o.free_thresh < o.occupied_thresh &&
-                       o.occupied_thresh < pixel_occupancy(kOccupiedPixel);
-  if (!ordered) {  // also catches NaN
-    throw ConfigError(fmt::format(
-        "map_server thresholds: need 1/255 < free_thresh < occupied_thresh < 1 so the map reads back as "
-        "written, got free_thresh {} and occupied_thresh {}",
-        o.free_thresh, o.occupied_thresh));
-  }
-}
-
 // map_saver's 205 reads back as unknown for its default thresholds; for other
 // thresholds pick a grey that lands between them, so the round trip holds.
 int unknown_pixel_for(const MapServerOptions& o) {
@@ -81,6 +70,11 @@ std::string yaml_float(double v) {
   return s;
 }
 
+// Origins are whole cells times the resolution, which binary floating point
+// misses by an ulp (-224 * 0.05 = -11.200000000000001): rounded to a
+// nanometre, far below any cell, they print as the number meant.
+std::string yaml_coordinate(double v) { return yaml_float(std::round(v * 1e9) / 1e9); }
+
 // The file name as a YAML scalar, quoted only if it has to be.
 std::string yaml_string(const std::string& s) {
   YAML::Emitter emitter;
@@ -96,11 +90,11 @@ std::string encode_pgm(const GridRaster& raster, const MapServerOptions& options
   // The picture's top row is the map's highest y.
   for (int cy = raster.height - 1; cy >= 0; --cy) {
     for (int cx = 0; cx < raster.width; ++cx) {
-      const double p = raster.at(cx, cy).occupancy();
+      const std::int8_t occupancy = occupancy_grid_value(raster.at(cx, cy), options);
       int value = unknown;
-      if (p > options.occupied_thresh) {
+      if (occupancy == 100) {
         value = kOccupiedPixel;
-      } else if (p < options.free_thresh) {
+      } else if (occupancy == 0) {
         value = kFreePixel;
       }
       if (options.negate) value = 255 - value;
@@ -220,8 +214,26 @@ DsMass mass_for(std::int8_t value) {
 
 }  // namespace
 
+void check_map_server_options(const MapServerOptions& o) {
+  const bool ordered = o.free_thresh > pixel_occupancy(kFreePixel) && o.free_thresh < o.occupied_thresh &&
+                       o.occupied_thresh < pixel_occupancy(kOccupiedPixel);
+  if (!ordered) {  // also catches NaN
+    throw ConfigError(fmt::format(
+        "map_server thresholds: need 1/255 < free_thresh < occupied_thresh < 1 so the map reads back as "
+        "written, got free_thresh {} and occupied_thresh {}",
+        o.free_thresh, o.occupied_thresh));
+  }
+}
+
 void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const MapServerOptions& options) {
-  check_thresholds(options);
+  OutputFiles files;
+  add_map_server(files, yaml_path, raster, options);
+  for (const OutputFiles::File& f : files.files()) write_file_atomically(f.path, f.contents);  // image first
+}
+
+void add_map_server(OutputFiles& files, const fs::path& yaml_path, const GridRaster& raster,
+                    const MapServerOptions& options) {
+  check_map_server_options(options);
   check_raster(raster, yaml_path);
   const std::string image_name = yaml_path.stem().string() + ".pgm";
   const fs::path pgm_path = yaml_path.parent_path() / image_name;
@@ -238,13 +250,13 @@ void write_map_server(const fs::path& yaml_path, const GridRaster& raster, const
       "negate: {}\n"
       "occupied_thresh: {}\n"
       "free_thresh: {}\n",
-      yaml_string(image_name), yaml_float(raster.resolution), yaml_float(raster.origin.x()),
-      yaml_float(raster.origin.y()), options.negate ? 1 : 0, yaml_float(options.occupied_thresh),
+      yaml_string(image_name), yaml_float(raster.resolution), yaml_coordinate(raster.origin.x()),
+      yaml_coordinate(raster.origin.y()), options.negate ? 1 : 0, yaml_float(options.occupied_thresh),
       yaml_float(options.free_thresh));
 
   // Image first: a YAML that exists always points at a complete picture.
-  write_file_atomically(pgm_path, encode_pgm(raster, options));
-  write_file_atomically(yaml_path, yaml);
+  files.add(pgm_path, encode_pgm(raster, options));
+  files.add(yaml_path, yaml);
 }
 
 LoadedMap read_map_server(const fs::path& yaml_path) {

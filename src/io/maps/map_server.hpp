@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "grid/grid_raster.hpp"
+#include "io/atomic_file.hpp"
 
 namespace dsswarm {
 
@@ -16,16 +17,35 @@ struct MapServerOptions {
   bool negate = false;            // true: white means occupied in the picture
 };
 
+// The ROS OccupancyGrid value of a cell as a map written with `options` reads
+// back in map_server (trinary): p = cell.occupancy() > occupied_thresh → 100,
+// p < free_thresh → 0, else −1 (unknown). The live /map uses it too, so it
+// shows what map_server would serve.
+inline std::int8_t occupancy_grid_value(const DsMass& cell, const MapServerOptions& options) {
+  const double p = cell.occupancy();
+  if (p > options.occupied_thresh) return 100;
+  if (p < options.free_thresh) return 0;
+  return -1;
+}
+
+// Throws ConfigError for thresholds that map_server could not read back
+// (need 1/255 < free_thresh < occupied_thresh < 1).
+void check_map_server_options(const MapServerOptions& options);
+
 // Writes NAME.pgm next to `yaml_path` (= NAME.yaml), then the YAML that points
 // at it. Cells are classified by p = cell.occupancy(): p > occupied_thresh is
 // occupied (pixel 0), p < free_thresh is free (254), anything else unknown (205)
 // — map_saver's values, which map_server reads back as the same classes.
 // With negate the pixels are inverted (255 − value) and the YAML says so.
-// Throws ConfigError for thresholds that map_server could not read back
-// (need 1/255 < free_thresh < occupied_thresh < 1) and InputError for an
-// empty or inconsistent raster or a file that cannot be written.
+// Throws ConfigError for thresholds that check_map_server_options rejects and
+// InputError for an empty or inconsistent raster or a file that cannot be written.
 void write_map_server(const std::filesystem::path& yaml_path, const GridRaster& raster,
                       const MapServerOptions& options = {});
+
+// The same two files added to `files` (image first), to be written with the
+// command's other outputs. The same errors, before anything is written.
+void add_map_server(OutputFiles& files, const std::filesystem::path& yaml_path, const GridRaster& raster,
+                    const MapServerOptions& options = {});
 
 struct LoadedMap {
   // Masses reconstructed from the classes: occupied → {1, 0}, free → {0, 1},

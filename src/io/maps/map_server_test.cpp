@@ -89,6 +89,19 @@ TEST(MapServerWrite, YamlHasEveryMapServerKey) {
   EXPECT_DOUBLE_EQ(y["free_thresh"].as<double>(), 0.196);
 }
 
+// Origins are tile indices times the resolution: -224 * 0.05 is -11.200000000000001
+// in binary; the file says -11.2 (a nanometre is far below any cell).
+TEST(MapServerWrite, OriginIsWrittenWithoutFloatNoise) {
+  const fs::path dir = fresh_dir();
+  GridRaster r = small_raster();
+  r.resolution = 0.05;
+  r.origin = {-224 * 0.05, 3 * 0.1};
+  write_map_server(dir / "m.yaml", r);
+  const std::string yaml = slurp(dir / "m.yaml");
+  EXPECT_NE(yaml.find("origin: [-11.2, 0.3, 0.0]\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("resolution: 0.05\n"), std::string::npos) << yaml;
+}
+
 TEST(MapServerWrite, ReadsBackAsTheSameClassesAtTheSameCells) {
   const fs::path dir = fresh_dir();
   const GridRaster original = small_raster();

@@ -48,7 +48,7 @@ void on_png_flush(png_structp) {}
 
 // Encodes `image` into sink.bytes. Returns false with sink.message set on
 // failure. Owns no C++ objects, so a longjmp out of libpng skips nothing.
-bool encode_png(const Image& image, PngSink& sink) {
+bool encode_rows(const Image& image, PngSink& sink) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, on_png_error, on_png_warning);
   if (png == nullptr) {
     std::snprintf(sink.message, sizeof sink.message, "cannot create the libpng writer");
@@ -78,7 +78,7 @@ bool encode_png(const Image& image, PngSink& sink) {
 
 }  // namespace
 
-void write_png(const std::filesystem::path& path, const Image& image) {
+std::string encode_png(const std::filesystem::path& path, const Image& image) {
   const auto fail = [&](const std::string& what) {
     throw InputError(fmt::format("cannot write PNG {}: {}", path.string(), what));
   };
@@ -92,8 +92,12 @@ void write_png(const std::filesystem::path& path, const Image& image) {
   std::string bytes;
   PngSink sink;
   sink.bytes = &bytes;
-  if (!encode_png(image, sink)) fail(fmt::format("libpng: {}", sink.message));
-  write_file_atomically(path, bytes);
+  if (!encode_rows(image, sink)) fail(fmt::format("libpng: {}", sink.message));
+  return bytes;
+}
+
+void write_png(const std::filesystem::path& path, const Image& image) {
+  write_file_atomically(path, encode_png(path, image));
 }
 
 }  // namespace dsswarm

@@ -175,17 +175,19 @@ void draw_polyline(Image& image, const GridRaster& frame, const std::vector<Eige
 void draw_marker(Image& image, const GridRaster& frame, const Eigen::Vector2d& world, Rgb colour, int radius) {
   if (radius < 0 || radius > 1000) throw ConfigError(fmt::format("marker radius must be 0..1000 pixels, got {}", radius));
   const Eigen::Vector2d centre = world_to_pixel(image, frame, world);
-  if (!centre.allFinite()) return;
+  fill_disc(image, centre.x(), centre.y(), radius, colour);
+}
+
+void fill_disc(Image& image, double x, double y, int radius, Rgb colour) {
+  if (radius < 0 || radius > 1000) throw ConfigError(fmt::format("disc radius must be 0..1000 pixels, got {}", radius));
+  if (!std::isfinite(x) || !std::isfinite(y)) return;
   // Reject far-away centres in floating point, before any conversion to int.
-  if (centre.x() + radius + 1 < 0 || centre.x() - radius - 1 > image.width || centre.y() + radius + 1 < 0 ||
-      centre.y() - radius - 1 > image.height) {
-    return;
-  }
-  const int cx = static_cast<int>(std::floor(centre.x())), cy = static_cast<int>(std::floor(centre.y()));
+  if (x + radius + 1 < 0 || x - radius - 1 > image.width || y + radius + 1 < 0 || y - radius - 1 > image.height) return;
+  const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y));
   const int reach = radius * (radius + 1);  // r² + r rounds the disc's outline nicely
-  for (int y = std::max(0, cy - radius); y <= std::min(image.height - 1, cy + radius); ++y) {
-    for (int x = std::max(0, cx - radius); x <= std::min(image.width - 1, cx + radius); ++x) {
-      if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= reach) image.at(x, y) = colour;
+  for (int py = std::max(0, cy - radius); py <= std::min(image.height - 1, cy + radius); ++py) {
+    for (int px = std::max(0, cx - radius); px <= std::min(image.width - 1, cx + radius); ++px) {
+      if ((px - cx) * (px - cx) + (py - cy) * (py - cy) <= reach) image.at(px, py) = colour;
     }
   }
 }

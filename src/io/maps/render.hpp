@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "grid/grid_raster.hpp"
@@ -58,6 +59,9 @@ void draw_polyline(Image& image, const GridRaster& frame, const std::vector<Eige
 // radius must be 0..1000 (else ConfigError).
 void draw_marker(Image& image, const GridRaster& frame, const Eigen::Vector2d& world, Rgb colour, int radius);
 
+// draw_marker in pixel coordinates: a filled disc centred on (x, y), clipped.
+void fill_disc(Image& image, double x, double y, int radius, Rgb colour);
+
 // Eight colours that stay distinct from each other and from the grey map;
 // any index (negative too) wraps around the palette.
 Rgb agent_colour(int index);
@@ -65,5 +69,8 @@ Rgb agent_colour(int index);
 // 8-bit RGB PNG, written atomically. InputError (naming the file) for an empty
 // or inconsistent image, a libpng failure, or a file that cannot be written.
 void write_png(const std::filesystem::path& path, const Image& image);
+
+// The bytes write_png writes; errors name `path`.
+std::string encode_png(const std::filesystem::path& path, const Image& image);
 
 }  // namespace dsswarm

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <istream>
 #include <map>
 #include <set>
 #include <string>
@@ -70,19 +71,33 @@ bool parse_fields(const char* p, std::size_t n, Fields& fields) {
   return true;
 }
 
+// For error messages: control and non-ASCII bytes as '?'.
+std::string printable(std::string text) {
+  for (char& c : text) {
+    if (c < 0x20 || c > 0x7e) c = '?';
+  }
+  return text;
+}
+
 class StructureCheck {
  public:
-  explicit StructureCheck(std::string path) : path_(std::move(path)) {}
+  StructureCheck(std::istream& in, std::string path) : path_(std::move(path)), in_(in) {}
 
   void run() {
-    in_.open(path_, std::ios::binary);
-    if (!in_) throw InputError(path_ + ": cannot open file");
     in_.seekg(0, std::ios::end);
     file_size_ = static_cast<std::uint64_t>(in_.tellg());
     in_.seekg(0);
     std::string magic(kMagicSize, '\0');
     if (file_size_ < kMagicSize || !read_exact(0, magic.data(), kMagicSize) || magic != kMagic) {
-      if (magic.rfind("#ROSBAG V", 0) == 0) return;  // another version: rosbag_storage decides
+      // rosbag_storage would read any other version line ("#ROSBAG V1.2", but
+      // also "#ROSBAG V2. 0" as 2.0) without these checks.
+      if (magic.rfind("#ROSBAG V", 0) == 0) {
+        std::string line(static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, 40)), '\0');
+        read_exact(0, line.data(), line.size());
+        throw InputError(path_ + ": ROS1 bag format \"" + printable(line.substr(0, line.find('\n'))) +
+                         "\" is not supported (only \"#ROSBAG V2.0\"; rewrite the bag with a current "
+                         "rosbag, e.g. `rosbag filter old.bag new.bag True`)");
+      }
       throw InputError(path_ + ": not a ROS1 bag (the file does not start with \"#ROSBAG V2.0\")");
     }
     for (std::uint64_t pos = kMagicSize; pos < file_size_;) pos = top_level_record(pos);
@@ -202,37 +217,76 @@ class StructureCheck {
     if (top_level) connection_ids_.insert(id);
   }
 
+  // The chunk's records. Nothing is allocated for a size the chunk cannot
+  // hold: a 9 kB bag claiming a 1 GB chunk made this check allocate (and
+  // clear) 1 GB (found by fuzzing).
   std::vector<char> decompress(const Fields& fields, const std::string& data,
                                std::uint64_t pos) const {
     const auto compression = fields.find("compression");
     const auto size = static_cast<std::uint32_t>(field(fields, "size", 4, pos));
     if (compression == fields.end()) damaged("chunk without a compression field", pos);
     if (size > kMaxChunkSize) damaged("implausible chunk size " + std::to_string(size), pos);
-    std::vector<char> out(size);
-    std::vector<char> in;  // the C APIs take non-const pointers
-    if (compression->second != "none") in.assign(data.begin(), data.end());
-    unsigned int out_size = size;
+    std::vector<char> in(data.begin(), data.end());  // the C APIs take non-const pointers
+    std::vector<char> out;
     if (compression->second == "none") {
       if (data.size() != size)
         damaged("uncompressed chunk whose size field disagrees with its length", pos);
-      std::copy(data.begin(), data.end(), out.begin());
+      return in;
     } else if (compression->second == "bz2") {
-      const int rc = BZ2_bzBuffToBuffDecompress(out.data(), &out_size, in.data(),
-                                                static_cast<unsigned int>(in.size()), 0, 0);
-      if (rc != BZ_OK) damaged("corrupt bz2 chunk (libbz2 error " + std::to_string(rc) + ")", pos);
+      out = inflate_bz2(in, size, pos);
     } else if (compression->second == "lz4") {
+      // An LZ4 byte stands for at most 255 output bytes.
+      constexpr std::uint64_t kMaxLz4Ratio = 255, kLz4FrameSlack = 1 << 16;
+      if (size > kMaxLz4Ratio * in.size() + kLz4FrameSlack) {
+        damaged("lz4 chunk of " + std::to_string(in.size()) + " bytes cannot hold the " +
+                    std::to_string(size) + " bytes its header says",
+                pos);
+      }
+      out.resize(size);
+      unsigned int out_size = size;
       const int rc = roslz4_buffToBuffDecompress(in.data(), static_cast<unsigned int>(in.size()),
                                                  out.data(), &out_size);
       if (rc != ROSLZ4_OK)
         damaged("corrupt lz4 chunk (roslz4 error " + std::to_string(rc) + ")", pos);
+      out.resize(out_size);
     } else {
       damaged("unknown chunk compression '" + compression->second + "'", pos);
     }
-    if (out_size != size) {
-      damaged("chunk decompresses to " + std::to_string(out_size) + " bytes, its header says " +
-                  std::to_string(size),
+    if (out.size() != size) {
+      damaged("chunk decompresses to " +
+                  (out.size() > size ? "more than " + std::to_string(size) + " bytes"
+                                     : std::to_string(out.size()) + " bytes") +
+                  ", its header says " + std::to_string(size),
               pos);
     }
+    return out;
+  }
+
+  // bz2 can shrink data by far more than any fixed ratio, so its output
+  // grows a step at a time, to at most one byte more than `size` (which
+  // tells a chunk holding more than it says).
+  std::vector<char> inflate_bz2(std::vector<char>& in, std::uint32_t size, std::uint64_t pos) const {
+    constexpr std::size_t kStep = 1 << 20;
+    bz_stream stream{};
+    if (BZ2_bzDecompressInit(&stream, 0, 0) != BZ_OK) damaged("libbz2 cannot start", pos);
+    stream.next_in = in.data();
+    stream.avail_in = static_cast<unsigned int>(in.size());
+    std::vector<char> out;
+    std::size_t produced = 0;
+    int rc = BZ_OK;
+    while (rc == BZ_OK && produced <= size) {
+      if (produced == out.size()) out.resize(std::min<std::size_t>(std::size_t{size} + 1, out.size() + kStep));
+      stream.next_out = out.data() + produced;
+      stream.avail_out = static_cast<unsigned int>(out.size() - produced);
+      const std::size_t before = produced;
+      rc = BZ2_bzDecompress(&stream);
+      produced = out.size() - stream.avail_out;
+      if (rc == BZ_OK && stream.avail_in == 0 && produced == before) rc = BZ_UNEXPECTED_EOF;
+    }
+    BZ2_bzDecompressEnd(&stream);
+    if (rc != BZ_STREAM_END && produced <= size)
+      damaged("corrupt bz2 chunk (libbz2 error " + std::to_string(rc) + ")", pos);
+    out.resize(produced);
     return out;
   }
 
@@ -343,7 +397,7 @@ class StructureCheck {
   }
 
   std::string path_;
-  std::ifstream in_;
+  std::istream& in_;
   std::uint64_t file_size_ = 0;
   std::vector<Record> records_;
   std::uint64_t index_pos_ = 0;
@@ -362,6 +416,12 @@ class StructureCheck {
 
 }  // namespace
 
-void check_bag_structure(const std::string& path) { StructureCheck(path).run(); }
+void check_bag_structure(std::istream& in, const std::string& name) { StructureCheck(in, name).run(); }
+
+void check_bag_structure(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file");
+  check_bag_structure(in, path);
+}
 
 }  // namespace dsswarm::rosbag_raw

@@ -6,6 +6,7 @@
 // checks that lengths, chunk sizes, index offsets and connection ids agree,
 // so rosbag_storage only ever sees a file it can read safely.
 // C++17-clean, no ROS includes.
+#include <istream>
 #include <string>
 
 namespace dsswarm::rosbag_raw {
@@ -13,7 +14,11 @@ namespace dsswarm::rosbag_raw {
 // Throws InputError naming `path` (and the byte offset of the offending
 // record) for a file that is not a ROS1 bag, is truncated, was not closed
 // (no index), or whose records do not hang together. Bags of other format
-// versions (1.2) pass unchecked: rosbag_storage reads or rejects them itself.
+// versions (1.2) are refused too: rosbag_storage would read them unchecked.
 void check_bag_structure(const std::string& path);
+
+// The same for a bag held in `in` (a binary stream); `name` stands for the
+// path in errors.
+void check_bag_structure(std::istream& in, const std::string& name);
 
 }  // namespace dsswarm::rosbag_raw

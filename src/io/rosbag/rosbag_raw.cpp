@@ -10,7 +10,6 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <limits>
@@ -23,6 +22,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "io/bag_common/bag_collector.hpp"
 #include "io/rosbag/bag_structure.hpp"
 
 namespace dsswarm::rosbag_raw {
@@ -101,63 +101,56 @@ FilePosition file_position(const rosbag::MessageInstance& m) {
   return {entry.chunk_pos, entry.offset};
 }
 
-template <typename String>
-std::string without_leading_slash(const String& frame) {
-  const std::string s(frame.begin(), frame.end());
-  return !s.empty() && s.front() == '/' ? s.substr(1) : s;
-}
-
-// Yaw of a quaternion that need not be normalised (the form below is
-// homogeneous in q). A zero or non-finite quaternion has no heading: refuse it
-// rather than return 0.
 template <typename Quaternion>
-double yaw_of(const Quaternion& q, const std::string& where) {
-  const double norm2 = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
-  if (!std::isfinite(norm2) || norm2 < 1e-12) {
-    throw InputError(where + ": orientation quaternion is zero or not finite");
-  }
-  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), q.w * q.w + q.x * q.x - q.y * q.y - q.z * q.z);
+bag::RawQuaternion raw_quaternion(const Quaternion& q) {
+  return {q.x, q.y, q.z, q.w};
 }
 
-void require_finite_position(double x, double y, const std::string& where) {
-  if (!std::isfinite(x) || !std::isfinite(y)) throw InputError(where + ": position is not finite");
-}
-
-class BagCollector {
+// Decodes the messages the shared collector wants and hands them over.
+class Ros1Collector {
  public:
-  BagCollector(std::string path, std::string scan_topic, std::string odom_topic, bool use_tf)
-      : path_(std::move(path)),
-        scan_topic_(std::move(scan_topic)),
-        odom_topic_(std::move(odom_topic)),
-        use_tf_(use_tf) {}
+  Ros1Collector(std::string path, const BagReadOptions& options)
+      : path_(path), collector_(std::move(path), options) {}
 
   // Counts every message; true for those add() wants to see.
   bool wants(const rosbag::MessageInstance& m) {
-    const std::string& topic = m.getTopic();
-    ++message_counts_[topic];
-    return topic == scan_topic_ || (!use_tf_ && topic == odom_topic_) || topic == "/tf" ||
-           topic == "/tf_static";
+    ++message_counts_[m.getTopic()];
+    return collector_.role_of(m.getTopic()) != Role::Ignored;
   }
 
   // Messages must come in file order.
   void add(const rosbag::MessageInstance& m) {
-    const std::string& topic = m.getTopic();
-    if (topic == scan_topic_) {
-      add_scan(m);
-    } else if (!use_tf_ && topic == odom_topic_) {
-      add_odometry(m);
-    } else if (topic == "/tf" || topic == "/tf_static") {
-      add_transforms(m, topic == "/tf_static");
+    const double record_time = m.getTime().toSec();
+    switch (collector_.role_of(m.getTopic())) {
+      case Role::Scan: {
+        const auto msg = decode<Scan>(m);
+        RawScan scan;
+        scan.angle_min = msg->angle_min;
+        scan.angle_increment = msg->angle_increment;
+        scan.range_min = msg->range_min;
+        scan.range_max = msg->range_max;
+        scan.ranges.assign(msg->ranges.begin(), msg->ranges.end());
+        const std::string frame(msg->header.frame_id.begin(), msg->header.frame_id.end());
+        collector_.add_scan(msg->header.stamp.toSec(), record_time, frame, std::move(scan));
+        break;
+      }
+      case Role::Odometry: {
+        const auto msg = decode<Odometry>(m);
+        const auto& pose = msg->pose.pose;
+        collector_.add_odometry(msg->header.stamp.toSec(), record_time, pose.position.x,
+                                pose.position.y, raw_quaternion(pose.orientation));
+        break;
+      }
+      case Role::Transforms:
+      case Role::StaticTransforms:
+        add_transforms(m, record_time);
+        break;
+      case Role::Ignored:
+        break;
     }
   }
 
-  RawBag finish(rosbag::View& view) {
-    RawBag bag;
-    bag.scans = std::move(scans_);
-    bag.odom = std::move(odom_);
-    bag.laser_frame = laser_frame_.empty() ? kDefaultLaserFrame : laser_frame_;
-    bag.laser_offset = laser_offset(bag.laser_frame);
-    bag.zero_header_stamps = zero_header_stamps_;
+  RawBag finish(rosbag::View& view) && {
     std::map<std::string, RawTopic> topics;
     for (const rosbag::ConnectionInfo* c : view.getConnections()) {
       RawTopic& t = topics[c->topic];
@@ -170,11 +163,14 @@ class BagCollector {
       }
       t.messages = message_counts_[c->topic];
     }
-    for (auto& entry : topics) bag.topics.push_back(std::move(entry.second));
-    return bag;
+    std::vector<RawTopic> sorted;
+    for (auto& entry : topics) sorted.push_back(std::move(entry.second));
+    return std::move(collector_).finish(std::move(sorted));
   }
 
  private:
+  using Role = bag::BagCollector::Role;
+
   // The message as T, or InputError when the topic carries another type (or
   // another version of T: the MD5 sums differ).
   template <typename T>
@@ -189,99 +185,35 @@ class BagCollector {
     return msg;
   }
 
-  double stamp_of(const ros::Time& header_stamp, const rosbag::MessageInstance& m) {
-    if (!header_stamp.isZero()) return header_stamp.toSec();
-    ++zero_header_stamps_;
-    return m.getTime().toSec();
-  }
-
-  // Names a message for error messages by its record time (its index in
-  // View order would not match the file order a user sees in other tools).
-  std::string where(const rosbag::MessageInstance& m) const {
-    return path_ + ": " + m.getTopic() + " message at t=" + std::to_string(m.getTime().toSec());
-  }
-
-  void add_scan(const rosbag::MessageInstance& m) {
-    const auto msg = decode<Scan>(m);
-    if (laser_frame_.empty()) laser_frame_ = without_leading_slash(msg->header.frame_id);
-    RawScan scan;
-    scan.stamp = stamp_of(msg->header.stamp, m);
-    scan.angle_min = msg->angle_min;
-    scan.angle_increment = msg->angle_increment;
-    scan.range_min = msg->range_min;
-    scan.range_max = msg->range_max;
-    scan.ranges.assign(msg->ranges.begin(), msg->ranges.end());
-    scans_.push_back(std::move(scan));
-  }
-
-  void add_odometry(const rosbag::MessageInstance& m) {
-    const auto msg = decode<Odometry>(m);
-    const std::string here = where(m);
-    const auto& pose = msg->pose.pose;
-    require_finite_position(pose.position.x, pose.position.y, here);
-    odom_.push_back(RawOdom{stamp_of(msg->header.stamp, m), pose.position.x, pose.position.y,
-                            yaw_of(pose.orientation, here)});
-  }
-
-  void add_transforms(const rosbag::MessageInstance& m, bool is_static) {
+  void add_transforms(const rosbag::MessageInstance& m, double record_time) {
     // A /tf topic of some other type cannot hold what we look for: skip it
     // (the caller reports missing odometry or laser offset).
     const auto msg = instantiate_capped<Transforms>(m);
     if (!msg) return;
+    const bool is_static = collector_.role_of(m.getTopic()) == Role::StaticTransforms;
     for (const auto& tf : msg->transforms) {
-      const std::string parent = without_leading_slash(tf.header.frame_id);
-      const std::string child = without_leading_slash(tf.child_frame_id);
       const auto& t = tf.transform.translation;
-      if (use_tf_ && !is_static && parent == kOdomFrame && child == kBaseFrame) {
-        const std::string here = where(m) + " (" + parent + " -> " + child + ")";
-        require_finite_position(t.x, t.y, here);
-        odom_.push_back(
-            RawOdom{stamp_of(tf.header.stamp, m), t.x, t.y, yaw_of(tf.transform.rotation, here)});
-      } else if (parent == kBaseFrame) {
-        // The first transform to each child frame wins; the laser frame is
-        // known only once a scan has been read, so keep them all.
-        auto& found = is_static ? static_from_base_ : dynamic_from_base_;
-        if (found.count(child) == 0) {
-          const std::string here = where(m) + " (" + parent + " -> " + child + ")";
-          require_finite_position(t.x, t.y, here);
-          found[child] = RawStatic{true, t.x, t.y, yaw_of(tf.transform.rotation, here)};
-        }
-      }
+      collector_.add_transform(is_static, tf.header.stamp.toSec(), record_time,
+                               std::string(tf.header.frame_id.begin(), tf.header.frame_id.end()),
+                               std::string(tf.child_frame_id.begin(), tf.child_frame_id.end()),
+                               t.x, t.y, raw_quaternion(tf.transform.rotation));
     }
-  }
-
-  RawStatic laser_offset(const std::string& laser_frame) const {
-    if (laser_frame == kBaseFrame) return RawStatic{true, 0.0, 0.0, 0.0};
-    for (const auto* found : {&static_from_base_, &dynamic_from_base_}) {
-      const auto it = found->find(laser_frame);
-      if (it != found->end()) return it->second;
-    }
-    return RawStatic{};
   }
 
   std::string path_;
-  std::string scan_topic_;
-  std::string odom_topic_;
-  bool use_tf_;
-  std::vector<RawScan> scans_;
-  std::vector<RawOdom> odom_;
-  std::map<std::string, RawStatic> static_from_base_;   // /tf_static: base_link -> child
-  std::map<std::string, RawStatic> dynamic_from_base_;  // /tf: base_link -> child (older bags)
+  bag::BagCollector collector_;
   std::map<std::string, std::size_t> message_counts_;
-  std::string laser_frame_;
-  std::size_t zero_header_stamps_ = 0;
 };
 
 }  // namespace
 
-RawBag read_raw_bag(const std::string& path, const std::string& scan_topic,
-                    const std::string& odom_topic, bool use_tf) {
+RawBag read_raw_bag(const std::string& path, const BagReadOptions& options) {
   try {
     check_bag_structure(path);
     rosbag::Bag bag;
     bag.open(path, rosbag::bagmode::Read);
     rosbag::View view(bag);
-    BagCollector collector(path, scan_topic, odom_topic, use_tf);
+    Ros1Collector collector(path, options);
     // Decode in file order: that is the true order, and it reads each chunk
     // once (time order jumps between chunks at every glitched stamp, and
     // every jump decompresses a chunk again).
@@ -295,7 +227,7 @@ RawBag read_raw_bag(const std::string& path, const std::string& scan_topic,
       return file_position(wanted[a]) < file_position(wanted[b]);
     });
     for (const std::size_t i : order) collector.add(wanted[i]);
-    return collector.finish(view);
+    return std::move(collector).finish(view);
   } catch (const InputError&) {
     throw;
   } catch (const rosbag::BagException& e) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/test_files.hpp"
+#include <sys/resource.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 
 #include "common/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/rosbag/bag_structure.hpp"
 #include "io/rosbag/rosbag_test_writer.hpp"
 
 namespace dsswarm {
@@ -195,6 +197,35 @@ TEST(RosbagReader, OdometryFromTfWhenAsked) {
   expect_pose_near(with.scans[4].odometry, Pose2(1.0, 3.0, 0.75 * kPi), 1e-9);
   EXPECT_TRUE(has_warning(with, "odometry stamps on /tf (odom -> base_link) are out of time order"))
       << joined(with.warnings);
+}
+
+TEST(RosbagReader, AbsentOdometryTopicListsTheTopicsAndNamesTheOptions) {
+  TestBagSpec spec = small_spec();
+  spec.odom_topic.clear();  // odometry only on /tf
+  const fs::path path = write_bag("no_odom_topic", spec);
+  // The default topic: a warning, and the run goes on without odometry.
+  const SensorLog log = read_rosbag(path);
+  EXPECT_TRUE(has_warning(log, "/scan (sensor_msgs/LaserScan, 5 messages)")) << joined(log.warnings);
+  EXPECT_TRUE(has_warning(log, "--tf-odometry")) << joined(log.warnings);
+  // A topic the user named and mistyped: an error saying what there is.
+  RosbagOptions options;
+  options.odom_topic = "/odm";
+  options.odom_topic_named = true;
+  const std::string error = input_error_of(path, options);
+  EXPECT_NE(error.find("no odometry topic /odm"), std::string::npos) << error;
+  EXPECT_NE(error.find("/tf (tf2_msgs/TFMessage"), std::string::npos) << error;
+  EXPECT_NE(error.find("--tf-odometry"), std::string::npos) << error;
+  options.use_tf_odometry = true;  // /tf it is: the topic does not matter then
+  EXPECT_TRUE(read_rosbag(path, options).scans.front().odometry.has_value());
+}
+
+TEST(RosbagReader, NegativeRangesStayAndWarn) {
+  TestBagSpec spec = small_spec();
+  spec.messages[2] = scan_at(10.2, {1.0F, -2.0F, -std::numeric_limits<float>::infinity()});
+  const SensorLog log = read_rosbag(write_bag("negative", spec));
+  EXPECT_FLOAT_EQ(log.scans.front().ranges[1], -2.0F);
+  EXPECT_TRUE(has_warning(log, ": 1 range readings are negative (kept; they count as invalid beams)"))
+      << joined(log.warnings);
 }
 
 TEST(RosbagReader, ScansFarOutsideTheOdometrySpanGetNoOdometry) {
@@ -483,6 +514,68 @@ TEST(RosbagRealData, TruncatedRealBagIsAnInputError) {
   write_file_atomically(cut, std::string_view(bytes).substr(0, 100'000));
   const std::string message = input_error_of(cut);
   EXPECT_NE(message.find("mit-csail-100k.bag"), std::string::npos) << message;
+}
+
+TEST(BagStructure, ChecksABagInMemoryNamingItsSource) {
+  const std::string bytes = read_bytes(write_bag("in_memory", small_spec()));
+  std::istringstream whole(bytes, std::ios::binary);
+  EXPECT_NO_THROW(rosbag_raw::check_bag_structure(whole, "memory.bag"));
+  std::istringstream cut(bytes.substr(0, bytes.size() - 10), std::ios::binary);
+  try {
+    rosbag_raw::check_bag_structure(cut, "memory.bag");
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory.bag: ", 0), 0u) << e.what();
+  }
+}
+
+// Found by fuzzing (fuzz/rosbag_read.cpp): rosbag_storage reads the version
+// line with sscanf, so "#ROSBAG V2.   0" is a 2.0 bag to it; the structural
+// check let every line but "#ROSBAG V2.0" through unchecked, and rosbag_storage
+// then allocated the 3.2 GB the next length field asked for.
+TEST(RosbagReader, OtherVersionLinesAreRefusedNotReadUnchecked) {
+  const fs::path dir = fresh_dir("rosbag_versions");
+  const std::string lengths("\x45\x20\x20\xbf\x10\x00\x00\x00", 8);
+  for (const std::string& line : {std::string("#ROSBAG V2.   0\n"), std::string("#ROSBAG V1.2\n")}) {
+    const fs::path path = dir / "version.bag";
+    write_file_atomically(path, line + lengths + std::string(64, ' '));
+    const std::string message = input_error_of(path);
+    EXPECT_NE(message.find(path.string() + ": ROS1 bag format \"" + line.substr(0, line.size() - 1) +
+                           "\" is not supported"),
+              std::string::npos)
+        << message;
+  }
+}
+
+// Peak resident memory of this process so far (each ctest case runs alone).
+std::size_t peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::size_t>(usage.ru_maxrss) / 1024;
+}
+
+// Found by fuzzing (fuzz/rosbag_structure.cpp): a chunk whose size field
+// claims almost 1 GB made the structural check allocate and clear that much
+// before comparing it with the bytes there, for any compression.
+TEST(BagStructure, AChunkClaimingMoreThanItHoldsCostsNoMemory) {
+  for (const auto compression : {TestBagSpec::Compression::None, TestBagSpec::Compression::Bz2}) {
+    TestBagSpec spec = small_spec();
+    spec.compression = compression;
+    const fs::path path = write_bag("huge_chunk", spec);
+    std::string bytes = read_bytes(path);
+    const std::size_t size_field = bytes.find("size=");  // the first chunk's header
+    ASSERT_NE(size_field, std::string::npos);
+    bytes.replace(size_field + 5, 4, le32_bytes(0x3ff00000));
+    write_file_atomically(path, bytes);
+    const std::size_t before = peak_rss_mb();
+    const std::string message = input_error_of(path);
+    EXPECT_NE(message.find(compression == TestBagSpec::Compression::None
+                               ? "uncompressed chunk whose size field disagrees with its length"
+                               : "its header says 1072693248"),
+              std::string::npos)
+        << message;
+    EXPECT_LT(peak_rss_mb() - before, 256u) << "MB more at the peak";
+  }
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ StampedPose parse_tum_line(std::string_view line, const std::string& where) {
 
 }  // namespace
 
-void write_tum(const std::filesystem::path& path, const Trajectory& trajectory) {
+std::string format_tum(const std::filesystem::path& path, const Trajectory& trajectory) {
   for (std::size_t i = 0; i < trajectory.size(); ++i) {
     const StampedPose& s = trajectory[i];
     if (!std::isfinite(s.timestamp) || !std::isfinite(s.pose.x) || !std::isfinite(s.pose.y) ||
@@ -55,17 +55,17 @@ void write_tum(const std::filesystem::path& path, const Trajectory& trajectory) 
                                    path.string(), i, s.timestamp));
     }
   }
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "# timestamp x y z qx qy qz qw\n";
-    std::string line;
-    for (const StampedPose& s : trajectory) {
-      const double half = 0.5 * s.pose.theta;  // theta in (-pi, pi], so qw >= 0
-      line.clear();
-      fmt::format_to(std::back_inserter(line), "{:.6f} {:.9f} {:.9f} 0.000000 0.000000000 0.000000000 {:.9f} {:.9f}\n", s.timestamp,
-                     s.pose.x, s.pose.y, std::sin(half), std::cos(half));
-      out << line;
-    }
-  });
+  std::string text = "# timestamp x y z qx qy qz qw\n";
+  for (const StampedPose& s : trajectory) {
+    const double half = 0.5 * s.pose.theta;  // theta in (-pi, pi], so qw >= 0
+    fmt::format_to(std::back_inserter(text), "{:.6f} {:.9f} {:.9f} 0.000000 0.000000000 0.000000000 {:.9f} {:.9f}\n",
+                   s.timestamp, s.pose.x, s.pose.y, std::sin(half), std::cos(half));
+  }
+  return text;
+}
+
+void write_tum(const std::filesystem::path& path, const Trajectory& trajectory) {
+  write_file_atomically(path, format_tum(path, trajectory));
 }
 
 Trajectory read_tum(std::istream& in, const std::string& source_name) {

@@ -25,6 +25,9 @@ using Trajectory = std::vector<StampedPose>;
 // and the entry if a pose or timestamp is not finite (nothing is written then).
 void write_tum(const std::filesystem::path& path, const Trajectory& trajectory);
 
+// The file write_tum writes, as text; errors name `path`.
+std::string format_tum(const std::filesystem::path& path, const Trajectory& trajectory);
+
 // Reads a TUM file, keeping file order. Blank lines and '#' comments are
 // skipped. Yaw comes from the full quaternion, so 3D trajectories written by
 // other tools are projected onto the plane (z, roll and pitch are dropped).

@@ -1,0 +1,70 @@
+#include "agent/checkpoint.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+
+#include "common/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/maps/dsmap.hpp"
+
+namespace dsswarm::agent {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path map_file(const fs::path& dir) { return dir / "checkpoint.dsmap"; }
+fs::path state_file(const fs::path& dir) { return dir / "checkpoint.json"; }
+fs::path trajectory_file(const fs::path& dir) { return dir / "trajectory.tum"; }
+
+}  // namespace
+
+void write_checkpoint(const fs::path& dir, const Checkpoint& c) {
+  fs::create_directories(dir);
+  write_dsmap(map_file(dir).string(), c.snapshot);
+  write_tum(trajectory_file(dir), c.trajectory);
+  nlohmann::json j{{"name", c.name},
+                   {"pose", {c.pose.x, c.pose.y, c.pose.theta}},
+                   {"stamp", c.stamp},
+                   {"scans_processed", c.scans_processed},
+                   {"own_version", c.snapshot.layers.empty() ? 0 : c.snapshot.layers.front().version}};
+  write_file_atomically(state_file(dir), j.dump(2) + "\n");
+}
+
+bool has_checkpoint(const fs::path& dir) { return fs::exists(state_file(dir)) && fs::exists(map_file(dir)); }
+
+Checkpoint read_checkpoint(const fs::path& dir, const std::string& name) {
+  const fs::path state = state_file(dir);
+  if (!has_checkpoint(dir))
+    throw InputError(fmt::format("{}: no checkpoint to resume from (checkpoint.json and checkpoint.dsmap)", dir.string()));
+  nlohmann::json j;
+  try {
+    std::ifstream in(state);
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not a readable checkpoint ({})", state.string(), e.what()));
+  }
+  Checkpoint c;
+  try {
+    c.name = j.at("name").get<std::string>();
+    const auto p = j.at("pose").get<std::vector<double>>();
+    if (p.size() != 3 || !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InputError(state.string() + ": pose must be three finite numbers");
+    c.pose = {p[0], p[1], p[2]};
+    c.stamp = j.at("stamp").get<double>();
+    c.scans_processed = j.at("scans_processed").get<std::uint64_t>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: {}", state.string(), e.what()));
+  }
+  if (c.name != name)
+    throw InputError(fmt::format("{}: the checkpoint is robot '{}', not '{}'", state.string(), c.name, name));
+  c.snapshot = read_dsmap(map_file(dir).string());
+  if (c.snapshot.sender != name)
+    throw InputError(fmt::format("{}: the map is robot '{}''s, not '{}''s", map_file(dir).string(), c.snapshot.sender, name));
+  if (fs::exists(trajectory_file(dir))) c.trajectory = read_tum(trajectory_file(dir));
+  return c;
+}
+
+}  // namespace dsswarm::agent

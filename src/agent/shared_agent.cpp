@@ -1,0 +1,121 @@
+#include "agent/shared_agent.hpp"
+
+namespace dsswarm::agent {
+
+SharedAgent::SharedAgent(std::unique_ptr<SwarmAgent> agent, const RelativePoseConfig& locate)
+    : agent_(std::move(agent)), locate_(locate), composer_([this] { compose_loop(); }) {}
+
+SharedAgent::~SharedAgent() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_composer_.notify_all();
+  composer_.join();
+}
+
+void SharedAgent::restore_trajectory(Trajectory earlier) {
+  std::lock_guard lock(mutex_);
+  trajectory_.insert(trajectory_.begin(), earlier.begin(), earlier.end());
+}
+
+SlamStep SharedAgent::process(const LaserScan& scan) {
+  std::lock_guard lock(mutex_);
+  SlamStep step = agent_->process(scan);
+  trajectory_.push_back({scan.timestamp, step.pose});
+  // Dropped scans' poses revised after the fact (the first index is this run's).
+  const std::size_t base = trajectory_.size() - 1 - step.index;
+  for (const PoseRevision& r : step.revised) trajectory_[base + r.index].pose = r.pose;
+  return step;
+}
+
+protocol::CapturedView SharedAgent::capture_locked() const {
+  // The engine works on the view while scans keep changing the map: it gets
+  // its own frozen copy.
+  auto map = std::make_shared<const MultiResMap>(agent_->slam().map());
+  protocol::CapturedView v{agent_->view(locate_), agent_->last_scan()->timestamp, map};
+  v.view.map = map.get();
+  return v;
+}
+
+void SharedAgent::stage_view(const std::string& peer, std::uint64_t encounter) {
+  std::lock_guard lock(mutex_);
+  if (!agent_->last_scan()) return;
+  std::erase_if(staged_, [&](const auto& entry) { return entry.first.first == peer; });  // one per peer suffices
+  staged_[{peer, encounter}] = capture_locked();
+}
+
+std::optional<protocol::CapturedView> SharedAgent::capture_view(const std::string& peer, std::uint64_t encounter) {
+  std::lock_guard lock(mutex_);
+  if (auto it = staged_.find({peer, encounter}); it != staged_.end()) {
+    protocol::CapturedView v = std::move(it->second);
+    staged_.erase(it);
+    return v;
+  }
+  if (!agent_->last_scan()) return std::nullopt;
+  return capture_locked();
+}
+
+MapSnapshot SharedAgent::snapshot() {
+  std::lock_guard lock(mutex_);
+  return agent_->snapshot();
+}
+
+std::vector<LayerVersion> SharedAgent::inventory() const {
+  std::lock_guard lock(mutex_);
+  return agent_->inventory();
+}
+
+std::optional<Pose2> SharedAgent::known_frame(const std::string& origin) const {
+  std::lock_guard lock(mutex_);
+  const MapLayer* l = agent_->knowledge().find(origin);
+  return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
+}
+
+void SharedAgent::merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) {
+  std::lock_guard lock(mutex_);
+  if (!agent_->absorb(snapshot, sender_in_self)) return;
+  std::vector<std::uint64_t> encounters{encounter};
+  if (job_) {  // not started yet: the new job holds everything it would have
+    agent_->cancel_job();
+    encounters.insert(encounters.end(), job_->encounters.begin(), job_->encounters.end());
+  }
+  job_ = Job{agent_->compose_job(), std::move(encounters)};
+  wake_composer_.notify_all();
+}
+
+bool SharedAgent::composing() const {
+  std::lock_guard lock(mutex_);
+  return job_ || busy_ || ready_;
+}
+
+void SharedAgent::compose_loop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_composer_.wait(lock, [&] { return stop_ || job_; });
+    if (stop_) return;
+    Job job = std::move(*job_);
+    job_.reset();
+    busy_ = true;
+    lock.unlock();
+    MultiResMap working = SwarmAgent::compose(job.job);
+    lock.lock();
+    busy_ = false;
+    if (ready_) {  // never installed: this one holds it all
+      agent_->cancel_job();
+      job.encounters.insert(job.encounters.end(), ready_->second.encounters.begin(), ready_->second.encounters.end());
+    }
+    ready_.emplace(std::move(working), std::move(job));
+  }
+}
+
+std::vector<std::uint64_t> SharedAgent::install_ready() {
+  std::lock_guard lock(mutex_);
+  if (!ready_) return {};
+  auto [working, job] = std::move(*ready_);
+  ready_.reset();
+  agent_->install(std::move(working), job.job.own_version);
+  return job.encounters;
+}
+
+}  // namespace dsswarm::agent

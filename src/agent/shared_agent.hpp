@@ -1,0 +1,76 @@
+#pragma once
+// A robot's SwarmAgent shared between its threads: the scan loop processes
+// scans, the swarm thread answers the encounter engine (protocol::AgentPort),
+// and a composer thread builds the merged map off the scan path. One mutex
+// guards the agent; nothing slow happens under it except copying the map
+// for an encounter view.
+#include <condition_variable>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include "io/trajectory/tum.hpp"
+#include "protocol/encounter_engine.hpp"
+#include "swarm/swarm_agent.hpp"
+
+namespace dsswarm::agent {
+
+using SteadyClock = std::chrono::steady_clock;
+
+class SharedAgent : public protocol::AgentPort {
+ public:
+  SharedAgent(std::unique_ptr<SwarmAgent> agent, const RelativePoseConfig& locate);
+  ~SharedAgent() override;
+
+  // Poses of an earlier run of this robot (resumed), kept ahead of the new ones.
+  void restore_trajectory(Trajectory earlier);
+  // The scan loop. Returns the step; the trajectory keeps every scan's pose.
+  SlamStep process(const LaserScan& scan);
+  // Installs a merged map the composer finished (scan loop, between scans).
+  // Returns the encounters whose merge became visible, with when they were merged.
+  std::vector<std::uint64_t> install_ready();
+  // Takes the view for encounter (peer, id) now, for a later capture_view.
+  void stage_view(const std::string& peer, std::uint64_t encounter);
+
+  // protocol::AgentPort (swarm thread).
+  std::optional<protocol::CapturedView> capture_view(const std::string& peer, std::uint64_t encounter) override;
+  MapSnapshot snapshot() override;
+  std::vector<LayerVersion> inventory() const override;
+  std::optional<Pose2> known_frame(const std::string& origin) const override;
+  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) override;
+
+  // Reads under the lock.
+  template <class F>
+  auto with_agent(F&& f) const {
+    std::lock_guard lock(mutex_);
+    return f(*agent_, trajectory_);
+  }
+  bool composing() const;
+
+ private:
+  protocol::CapturedView capture_locked() const;
+  void compose_loop();
+
+  mutable std::mutex mutex_;
+  std::unique_ptr<SwarmAgent> agent_;
+  RelativePoseConfig locate_;
+  Trajectory trajectory_;
+  std::map<std::pair<std::string, std::uint64_t>, protocol::CapturedView> staged_;
+  // Composer: the newest job only (knowledge only grows, so it contains the
+  // older ones), the encounters it carries, and its result for the scan loop.
+  struct Job {
+    SwarmAgent::ComposeJob job;
+    std::vector<std::uint64_t> encounters;
+  };
+  std::optional<Job> job_;
+  std::optional<std::pair<MultiResMap, Job>> ready_;
+  bool busy_ = false;
+  bool stop_ = false;
+  std::condition_variable wake_composer_;
+  std::thread composer_;  // last: starts once everything above exists
+};
+
+}  // namespace dsswarm::agent

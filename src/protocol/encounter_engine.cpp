@@ -1,0 +1,340 @@
+#include "protocol/encounter_engine.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "common/hash.hpp"
+#include "common/rng.hpp"
+#include "io/maps/dsmap.hpp"
+
+namespace dsswarm::protocol {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+EncounterView view_of(const Offer& offer) {
+  EncounterView v;
+  v.pose = offer.pose;
+  v.points = offer.points;
+  v.surroundings = offer.surroundings;
+  v.wide_surroundings = offer.wide_surroundings;
+  return v;
+}
+
+// Whether a holder of `held` would take `layer` (as map_knowledge's supersedes,
+// by version and hop count; the pose tie-break is left to the receiver).
+bool peer_lacks(const MapLayer& layer, const std::vector<LayerVersion>& held) {
+  for (const LayerVersion& h : held)
+    if (h.origin == layer.origin)
+      return layer.version > h.version || (layer.version == h.version && layer.hops + 1 < h.hops);
+  return true;
+}
+
+}  // namespace
+
+struct EncounterEngine::Exchange {
+  std::string peer;
+  std::uint64_t id = 0;
+  bool self_is_a = true;
+  CapturedView mine;
+  std::optional<Offer> offer;  // the peer's
+  std::optional<PeerPlacement> my_placement;
+  std::optional<Placement> their_placement;
+  std::optional<Pose2> my_known;  // confirmation candidates as sent
+  std::vector<Pose2> my_pending;
+  bool decided = false;
+  bool accepted = false;
+  TransferAssembler incoming;
+  EncounterOutcome outcome;
+};
+
+EncounterEngine::EncounterEngine(std::string self, const SwarmConfig& config, AgentPort& port,
+                                 std::uint64_t incarnation)
+    : self_(std::move(self)), config_(config), port_(port), stamper_(self_, incarnation) {
+  config_.validate();
+}
+
+EncounterEngine::~EncounterEngine() = default;
+
+std::size_t EncounterEngine::buffered_bytes() const {
+  std::size_t n = 0;
+  for (const auto& [key, x] : open_) n += x->incoming.bytes_received();
+  return n;
+}
+
+std::uint64_t EncounterEngine::seed_for(const Exchange& x) const {
+  const std::string& a = x.self_is_a ? self_ : x.peer;
+  const std::string& b = x.self_is_a ? x.peer : self_;
+  return stream_seed(stream_seed(config_.slam.seed, fnv1a64(a + '\n' + b)), x.id);
+}
+
+void EncounterEngine::send(Exchange* x, const std::string& recipient, Body body) {
+  Outgoing out{recipient, encode(stamper_.stamp(recipient, std::move(body)))};
+  if (x) x->outcome.bytes_sent += out.bytes.size();
+  outbox_.push_back(std::move(out));
+}
+
+void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, EncounterOutcome::Decline why,
+                              const std::string& reason, double now) {
+  send(nullptr, peer, Decline{encounter, reason});
+  EncounterOutcome o;
+  o.encounter = encounter;
+  o.self = self_;
+  o.peer = peer;
+  o.self_is_a = self_ < peer;
+  o.end = EncounterOutcome::End::declined;
+  o.decline = why;
+  o.reason = reason;
+  o.started = o.ended = now;
+  outcomes_.push_back(std::move(o));
+}
+
+void EncounterEngine::start(const std::string& peer, std::uint64_t encounter, double now) {
+  join(peer, encounter, now);
+}
+
+EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::uint64_t encounter, double now) {
+  if (peer == self_) return nullptr;
+  const Key key{peer, encounter};
+  if (auto it = open_.find(key); it != open_.end()) return it->second.get();
+  if (!config_.merge) {
+    decline(peer, encounter, EncounterOutcome::Decline::merging_off, "merging is off", now);
+    return nullptr;
+  }
+  const double since = now - peers_[peer].last_merge;
+  if (since < config_.remerge_interval) {
+    decline(peer, encounter, EncounterOutcome::Decline::merged_recently,
+            fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, since, config_.remerge_interval),
+            now);
+    return nullptr;
+  }
+  if (open_.size() >= config_.max_open_encounters) {
+    decline(peer, encounter, EncounterOutcome::Decline::busy, fmt::format("busy: {} encounters open", open_.size()), now);
+    return nullptr;
+  }
+  std::optional<CapturedView> view = port_.capture_view(peer, encounter);
+  if (!view) {
+    decline(peer, encounter, EncounterOutcome::Decline::no_scan, "no scan yet", now);
+    return nullptr;
+  }
+  auto x = std::make_unique<Exchange>();
+  x->peer = peer;
+  x->id = encounter;
+  x->self_is_a = self_ < peer;
+  x->mine = std::move(*view);
+  EncounterOutcome& o = x->outcome;
+  o.encounter = encounter;
+  o.self = self_;
+  o.peer = peer;
+  o.self_is_a = x->self_is_a;
+  o.self_pose = x->mine.view.pose;
+  o.self_stamp = x->mine.stamp;
+  o.started = now;
+  Offer offer;
+  offer.encounter = encounter;
+  offer.stamp = x->mine.stamp;
+  offer.pose = x->mine.view.pose;
+  offer.points = x->mine.view.points;
+  offer.surroundings = x->mine.view.surroundings;
+  offer.wide_surroundings = x->mine.view.wide_surroundings;
+  offer.inventory = port_.inventory();
+  Exchange* raw = x.get();
+  open_.emplace(key, std::move(x));
+  send(raw, peer, std::move(offer));
+  return raw;
+}
+
+void EncounterEngine::receive(const Message& message, std::size_t wire_bytes, double now) {
+  const std::string& from = message.header.sender;
+  if (const auto* m = std::get_if<Proximity>(&message.body)) {
+    if (m->a == self_) start(m->b, m->event, now);
+    else if (m->b == self_) start(m->a, m->event, now);
+  } else if (const auto* o = std::get_if<Offer>(&message.body)) {
+    on_offer(from, *o, wire_bytes, now);
+  } else if (const auto* p = std::get_if<Placement>(&message.body)) {
+    on_placement(from, *p, wire_bytes, now);
+  } else if (const auto* c = std::get_if<Chunk>(&message.body)) {
+    on_chunk(from, *c, wire_bytes, now);
+  } else if (const auto* d = std::get_if<Decline>(&message.body)) {
+    on_decline(from, *d, wire_bytes, now);
+  }
+  // Heartbeats are the agent's business.
+}
+
+void EncounterEngine::on_offer(const std::string& peer, const Offer& offer, std::size_t bytes, double now) {
+  // An offer is also an invitation: the proximity event may not have reached us.
+  Exchange* x = join(peer, offer.encounter, now);
+  if (!x || x->offer) return;
+  x->offer = offer;
+  x->outcome.bytes_received += bytes;
+  x->outcome.peer_pose = offer.pose;
+  x->outcome.peer_stamp = offer.stamp;
+  const auto t0 = std::chrono::steady_clock::now();
+  // A places B with the pair's seed, B places A with the next one.
+  x->my_placement = locate_peer(x->mine.view, view_of(offer), config_.encounter, seed_for(*x) + (x->self_is_a ? 0 : 1));
+  x->outcome.compute_ms = ms_since(t0);
+  if (std::optional<Pose2> known = port_.known_frame(peer))
+    x->my_known = x->self_is_a ? *known : known->inverse();  // as B's frame in A's
+  x->my_pending = peers_[peer].pending;
+  send(x, peer, Placement{offer.encounter, *x->my_placement, x->my_known, x->my_pending, x->outcome.compute_ms});
+  if (x->their_placement) decide(*x, now);
+}
+
+void EncounterEngine::on_placement(const std::string& peer, const Placement& placement, std::size_t bytes,
+                                   double now) {
+  auto it = open_.find({peer, placement.encounter});
+  if (it == open_.end() || it->second->their_placement) return;
+  Exchange& x = *it->second;
+  x.their_placement = placement;
+  x.outcome.bytes_received += bytes;
+  x.outcome.peer_compute_ms = placement.compute_ms;
+  if (x.my_placement) decide(x, now);
+}
+
+void EncounterEngine::decide(Exchange& x, double now) {
+  const Pose2& a_pose = x.self_is_a ? x.mine.view.pose : x.offer->pose;
+  const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
+  const PeerPlacement& mine = *x.my_placement;
+  const PeerPlacement& theirs = x.their_placement->placement;
+  EncounterOutcome& o = x.outcome;
+  o.estimate = decide_encounter(a_pose, b_pose, x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine,
+                                config_.encounter);
+  o.decided = x.decided = true;
+  x.accepted = o.estimate.accepted;
+  o.reason = o.estimate.reason;
+  if (x.accepted && config_.confirm) confirm(x);
+  if (!x.accepted) {
+    finish({x.peer, x.id}, EncounterOutcome::End::rejected, o.reason, now);
+    return;
+  }
+  send_transfer(x);
+  if (x.incoming.complete()) absorb_transfer(x, now);
+}
+
+void EncounterEngine::confirm(Exchange& x) {
+  EncounterOutcome& o = x.outcome;
+  const Pose2 t = o.estimate.b_frame_in_a;
+  const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
+  auto agrees = [&](const Pose2& other) {
+    const Pose2 d = between(other * b_pose, t * b_pose);
+    return std::hypot(d.x, d.y) <= config_.confirm_xy && std::abs(normalize_angle(d.theta)) <= config_.confirm_theta;
+  };
+  // What either robot holds, so both come to the same answer.
+  const Placement& theirs = *x.their_placement;
+  const bool by_known = (x.my_known && agrees(*x.my_known)) || (theirs.known_transform && agrees(*theirs.known_transform));
+  const bool by_earlier = std::any_of(x.my_pending.begin(), x.my_pending.end(), agrees) ||
+                          std::any_of(theirs.pending.begin(), theirs.pending.end(), agrees);
+  if (by_known || by_earlier) {
+    o.confirmed_by = by_known ? "known transform" : "earlier encounter";
+    return;
+  }
+  std::vector<Pose2>& pending = peers_[x.peer].pending;
+  pending.push_back(t);
+  if (pending.size() > config_.max_pending_confirmations) pending.erase(pending.begin());
+  x.accepted = false;
+  o.reason = "unconfirmed: the placements verify; the maps merge once a second encounter agrees";
+}
+
+void EncounterEngine::send_transfer(Exchange& x) {
+  MapSnapshot all = port_.snapshot();
+  MapSnapshot lacking;
+  lacking.sender = self_;
+  for (MapLayer& l : all.layers)
+    if (l.origin != x.peer && peer_lacks(l, x.offer->inventory)) lacking.layers.push_back(std::move(l));
+  const std::vector<std::uint8_t> bytes = lacking.layers.empty() ? std::vector<std::uint8_t>{} : encode_dsmap(lacking);
+  x.outcome.snapshot_bytes_sent = bytes.size();
+  for (Chunk& c : split_transfer(x.id, bytes, config_.chunk_bytes)) send(&x, x.peer, std::move(c));
+}
+
+void EncounterEngine::on_chunk(const std::string& peer, const Chunk& chunk, std::size_t bytes, double now) {
+  auto it = open_.find({peer, chunk.encounter});
+  if (it == open_.end()) return;  // abandoned, or never ours
+  Exchange& x = *it->second;
+  x.outcome.bytes_received += bytes;
+  if (buffered_bytes() + chunk.data.size() > config_.max_transfer_bytes ||
+      chunk.total_bytes > config_.max_transfer_bytes) {
+    finish(it->first, EncounterOutcome::End::abandoned,
+           fmt::format("snapshot transfers would hold more than {} MiB", config_.max_transfer_bytes >> 20), now);
+    return;
+  }
+  try {
+    if (!x.incoming.add(chunk)) return;
+  } catch (const ProtocolError& e) {
+    finish(it->first, EncounterOutcome::End::abandoned, std::string("bad snapshot transfer: ") + e.what(), now);
+    return;
+  }
+  if (x.decided && x.accepted) absorb_transfer(x, now);
+}
+
+void EncounterEngine::absorb_transfer(Exchange& x, double now) {
+  const Key key{x.peer, x.id};
+  MapSnapshot snapshot;
+  try {
+    const std::vector<std::uint8_t> bytes = x.incoming.take();
+    x.outcome.snapshot_bytes_received = bytes.size();
+    if (!bytes.empty()) snapshot = decode_dsmap(bytes, "snapshot from " + x.peer);
+  } catch (const InputError& e) {
+    finish(key, EncounterOutcome::End::abandoned, std::string("bad snapshot: ") + e.what(), now);
+    return;
+  }
+  if (!snapshot.layers.empty()) {
+    if (snapshot.sender != x.peer) {
+      finish(key, EncounterOutcome::End::abandoned, "snapshot from " + x.peer + " names sender " + snapshot.sender, now);
+      return;
+    }
+    const Pose2 t = x.outcome.estimate.b_frame_in_a;
+    const auto t0 = std::chrono::steady_clock::now();
+    x.outcome.layers_received = snapshot.layers.size();
+    port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.id);
+    x.outcome.merge_ms = ms_since(t0);
+  }
+  peers_[x.peer].last_merge = x.outcome.started;  // from the event, as robots that finish at different moments agree
+  finish(key, EncounterOutcome::End::accepted, "", now);
+}
+
+void EncounterEngine::on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now) {
+  auto it = open_.find({peer, decline.encounter});
+  if (it == open_.end()) return;
+  it->second->outcome.bytes_received += bytes;
+  it->second->outcome.decline = EncounterOutcome::Decline::by_peer;
+  finish(it->first, EncounterOutcome::End::declined, peer + " declined: " + decline.reason, now);
+}
+
+void EncounterEngine::finish(const Key& key, EncounterOutcome::End end, std::string reason, double now) {
+  auto it = open_.find(key);
+  if (it == open_.end()) return;
+  EncounterOutcome o = std::move(it->second->outcome);
+  o.end = end;
+  o.ended = now;
+  if (end != EncounterOutcome::End::accepted) o.reason = std::move(reason);
+  outcomes_.push_back(std::move(o));
+  open_.erase(it);
+}
+
+void EncounterEngine::drop_peer(const std::string& peer, const std::string& why, double now) {
+  std::vector<Key> keys;
+  for (const auto& [key, x] : open_)
+    if (key.first == peer) keys.push_back(key);
+  for (const Key& k : keys) finish(k, EncounterOutcome::End::abandoned, why, now);
+}
+
+void EncounterEngine::abandon_all(const std::string& why, double now) {
+  while (!open_.empty()) finish(open_.begin()->first, EncounterOutcome::End::abandoned, why, now);
+}
+
+void EncounterEngine::tick(double now) {
+  std::vector<std::pair<Key, const char*>> late;
+  for (const auto& [key, x] : open_)
+    if (now - x->outcome.started > config_.exchange_timeout)
+      late.push_back({key, !x->offer ? "offer" : !x->their_placement ? "placement" : "snapshot"});
+  for (const auto& [key, stage] : late)
+    finish(key, EncounterOutcome::End::abandoned,
+           fmt::format("timed out after {:.0f} s waiting for {}'s {}", config_.exchange_timeout, key.first, stage), now);
+}
+
+}  // namespace dsswarm::protocol

@@ -1,0 +1,131 @@
+#pragma once
+// One robot's side of every encounter it takes part in (messages.hpp has
+// the exchange step by step). The engine is synchronous and clock-free: the
+// caller hands it messages and the time, and sends what it puts in its
+// outbox. In `dsswarm swarm` / `demo` a session pumps several engines through
+// memory; in `dsswarm agent` a thread feeds one from DDS. Everything a robot
+// keeps per peer (re-merge timer, transforms awaiting confirmation) lives
+// here, and every random seed derives from the pair and the encounter id,
+// so two processes compute exactly what one process would.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "protocol/gate.hpp"
+#include "protocol/messages.hpp"
+#include "protocol/transfer.hpp"
+#include "swarm/encounter.hpp"
+#include "swarm/map_snapshot.hpp"
+#include "swarm/swarm_config.hpp"
+
+namespace dsswarm::protocol {
+
+// A robot's state for one encounter, taken when it joins.
+struct CapturedView {
+  EncounterView view;  // view.map stays valid while keep_alive lives
+  double stamp = 0.0;  // log time of the scan in view
+  std::shared_ptr<const void> keep_alive;
+};
+
+// What the engine needs of its robot.
+class AgentPort {
+ public:
+  virtual ~AgentPort() = default;
+  // The robot's view for encounter `encounter` with `peer`; nullopt before its first scan.
+  virtual std::optional<CapturedView> capture_view(const std::string& peer, std::uint64_t encounter) = 0;
+  virtual MapSnapshot snapshot() = 0;  // own map (layer 0) and everything known
+  virtual std::vector<LayerVersion> inventory() const = 0;  // what snapshot() would hold, without copying
+  // The pose of `origin`'s map frame in this robot's frame, if it holds that robot's map.
+  virtual std::optional<Pose2> known_frame(const std::string& origin) const = 0;
+  // Takes in the peer's layers (the sender's frame at `sender_in_self`) from encounter `encounter`.
+  virtual void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) = 0;
+};
+
+struct EncounterOutcome {
+  enum class End { accepted, rejected, declined, abandoned };
+  // Why this robot declined to take part (declined by itself; a peer's decline is `by_peer`).
+  enum class Decline { none, merging_off, merged_recently, busy, no_scan, by_peer };
+  std::uint64_t encounter = 0;
+  std::string self, peer;
+  bool self_is_a = true;  // A: the robot whose name sorts first
+  End end = End::abandoned;
+  std::string reason;        // why not accepted
+  Decline decline = Decline::none;
+  std::string confirmed_by;  // accepted: "known transform" or "earlier encounter"
+  EncounterEstimate estimate;  // set once decided
+  bool decided = false;
+  Pose2 self_pose, peer_pose;  // each robot's pose in its own frame at the scans exchanged
+  double self_stamp = 0.0, peer_stamp = 0.0;
+  double started = 0.0, ended = 0.0;  // the caller's clock, s
+  double compute_ms = 0.0, peer_compute_ms = 0.0, merge_ms = 0.0;
+  std::size_t bytes_sent = 0, bytes_received = 0;  // every message of the encounter, as on the wire
+  std::size_t snapshot_bytes_sent = 0, snapshot_bytes_received = 0;  // the .dsmap transfers alone
+  std::size_t layers_received = 0;
+};
+
+struct Outgoing {
+  std::string recipient;
+  std::vector<std::uint8_t> bytes;
+};
+
+class EncounterEngine {
+ public:
+  EncounterEngine(std::string self, const SwarmConfig& config, AgentPort& port, std::uint64_t incarnation = 1);
+  ~EncounterEngine();
+
+  // A proximity event: this robot and `peer` are near.
+  void start(const std::string& peer, std::uint64_t encounter, double now);
+  // A message the gate admitted, `wire_bytes` long.
+  void receive(const Message& message, std::size_t wire_bytes, double now);
+  // The peer restarted or vanished: its open encounters are abandoned.
+  void drop_peer(const std::string& peer, const std::string& why, double now);
+  // Abandons every open encounter (this robot stops).
+  void abandon_all(const std::string& why, double now);
+  // Abandons encounters older than the exchange timeout.
+  void tick(double now);
+
+  std::vector<Outgoing> take_outbox() { return std::exchange(outbox_, {}); }
+  std::vector<EncounterOutcome> take_outcomes() { return std::exchange(outcomes_, {}); }
+  std::size_t open_encounters() const { return open_.size(); }
+  const std::string& self() const { return self_; }
+  // Bytes held by incoming transfers in progress (bounded by the open-encounter cap).
+  std::size_t buffered_bytes() const;
+
+ private:
+  struct Exchange;
+  using Key = std::pair<std::string, std::uint64_t>;  // peer, encounter id
+  struct PeerState {
+    double last_merge = -1e300;
+    std::vector<Pose2> pending;  // verified, unconfirmed: B's frame in A's
+  };
+
+  Exchange* join(const std::string& peer, std::uint64_t encounter, double now);
+  void on_offer(const std::string& peer, const Offer& offer, std::size_t bytes, double now);
+  void on_placement(const std::string& peer, const Placement& placement, std::size_t bytes, double now);
+  void on_chunk(const std::string& peer, const Chunk& chunk, std::size_t bytes, double now);
+  void on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now);
+  void decide(Exchange& x, double now);
+  void confirm(Exchange& x);
+  void send_transfer(Exchange& x);
+  void absorb_transfer(Exchange& x, double now);
+  void send(Exchange* x, const std::string& recipient, Body body);
+  void decline(const std::string& peer, std::uint64_t encounter, EncounterOutcome::Decline why,
+               const std::string& reason, double now);
+  void finish(const Key& key, EncounterOutcome::End end, std::string reason, double now);
+  std::uint64_t seed_for(const Exchange& x) const;
+
+  std::string self_;
+  SwarmConfig config_;
+  AgentPort& port_;
+  MessageStamper stamper_;
+  std::map<Key, std::unique_ptr<Exchange>> open_;
+  std::map<std::string, PeerState> peers_;
+  std::vector<Outgoing> outbox_;
+  std::vector<EncounterOutcome> outcomes_;
+};
+
+}  // namespace dsswarm::protocol

@@ -1,0 +1,262 @@
+#include "protocol/encounter_engine.hpp"
+
+#include <gtest/gtest.h>
+
+#include "io/maps/dsmap.hpp"
+#include "swarm/map_knowledge.hpp"
+#include "swarm/test_scenes.hpp"
+
+namespace dsswarm::protocol {
+namespace {
+
+// A robot reduced to what the engine asks of it: a map built in the L-shaped
+// office from its own start, its scan where it stands, what it knows.
+class FakeRobot : public AgentPort {
+ public:
+  FakeRobot(const std::string& name, const Pose2& start, const Pose2& now, std::uint64_t seed)
+      : knowledge(name) {
+    Rng rng(seed);
+    const World world = test::l_shaped_office();
+    std::vector<Pose2> path;
+    for (int k = 0; k <= 10; ++k) path.push_back(interpolate(start, now, k / 10.0));
+    own = std::make_shared<MultiResMap>(test::map_from(world, path, start, rng));
+    view.map = own.get();
+    view.points = test::scan_at(world, now, rng);
+    view.pose = start.inverse() * now;
+    view.surroundings = surroundings_points(*own, view.pose, 8.0, 2000);
+    view.wide_surroundings = surroundings_points(*own, view.pose, 40.0, 8000);
+  }
+  std::optional<CapturedView> capture_view(const std::string&, std::uint64_t) override { return CapturedView{view, 100.0, nullptr}; }
+  MapSnapshot snapshot() override { return knowledge.snapshot(own, 11); }
+  std::vector<LayerVersion> inventory() const override {
+    std::vector<LayerVersion> out{{knowledge.self(), 11, 0}};
+    for (const MapLayer& l : knowledge.layers()) out.push_back({l.origin, l.version, l.hops});
+    return out;
+  }
+  std::optional<Pose2> known_frame(const std::string& origin) const override {
+    const MapLayer* l = knowledge.find(origin);
+    return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
+  }
+  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
+    ++merges;
+    last_transform = sender_in_self;
+    knowledge.absorb(snapshot, sender_in_self);
+  }
+
+  MapKnowledge knowledge;
+  std::shared_ptr<MultiResMap> own;
+  EncounterView view;
+  int merges = 0;
+  Pose2 last_transform;
+};
+
+bool same(const Pose2& p, const Pose2& q) { return p.x == q.x && p.y == q.y && p.theta == q.theta; }
+
+const Pose2 kStartA{1.5, 1.5, 0.4}, kStartB{8.5, 2.0, -2.5};
+
+struct Pair {
+  Pair(const SwarmConfig& config)
+      : a("a", kStartA, {3.0, 2.0, 0.1}, 1),
+        b("b", kStartB, {5.0, 2.5, 2.9}, 2),
+        ea("a", config, a),
+        eb("b", config, b),
+        ga("a"),
+        gb("b") {}
+  // Delivers everything in flight, `keep(bytes)` deciding what arrives.
+  void pump(double now, const std::function<bool(const Outgoing&)>& keep = {}) {
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (auto [from, to, gate] : {std::tuple{&ea, &eb, &gb}, std::tuple{&eb, &ea, &ga}})
+        for (const Outgoing& out : from->take_outbox()) {
+          moved = true;
+          if (keep && !keep(out)) continue;
+          if (auto v = gate->admit(out.bytes); v.message) to->receive(*v.message, out.bytes.size(), now);
+        }
+    }
+  }
+  FakeRobot a, b;
+  EncounterEngine ea, eb;
+  MessageGate ga, gb;
+};
+
+SwarmConfig unconfirmed() {
+  SwarmConfig c;
+  c.confirm = false;
+  return c;
+}
+
+using End = EncounterOutcome::End;
+
+TEST(EncounterEngine, BothRobotsAcceptTheSameTransformAndMergeWhatTheOtherLacks) {
+  Pair p(unconfirmed());
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  p.pump(0.0);
+  const auto oa = p.ea.take_outcomes(), ob = p.eb.take_outcomes();
+  ASSERT_EQ(oa.size(), 1u);
+  ASSERT_EQ(ob.size(), 1u);
+  ASSERT_EQ(oa[0].end, End::accepted) << oa[0].reason;
+  ASSERT_EQ(ob[0].end, End::accepted) << ob[0].reason;
+  const Pose2 t = oa[0].estimate.b_frame_in_a;
+  EXPECT_TRUE(same(t, ob[0].estimate.b_frame_in_a));  // one decision, computed twice
+  const Pose2 truth = kStartA.inverse() * kStartB;
+  EXPECT_NEAR(t.x, truth.x, 0.05);
+  EXPECT_NEAR(t.y, truth.y, 0.05);
+  EXPECT_NEAR(normalize_angle(t.theta - truth.theta), 0.0, 0.01);
+  EXPECT_EQ(p.a.merges, 1);
+  EXPECT_EQ(p.b.merges, 1);
+  EXPECT_TRUE(same(p.b.last_transform, t.inverse()));
+  EXPECT_EQ(oa[0].bytes_sent, ob[0].bytes_received);
+  EXPECT_EQ(oa[0].bytes_received, ob[0].bytes_sent);
+  EXPECT_EQ(oa[0].layers_received, 1u);
+  EXPECT_EQ(p.ea.open_encounters() + p.eb.open_encounters(), 0u);
+
+  // Later, with nothing new on either side, nothing but the offers and
+  // placements crosses again.
+  p.ea.start("b", 2, 20.0);
+  p.eb.start("a", 2, 20.0);
+  p.pump(20.0);
+  const auto again = p.ea.take_outcomes();
+  ASSERT_EQ(again.size(), 1u);
+  ASSERT_EQ(again[0].end, End::accepted) << again[0].reason;
+  EXPECT_EQ(again[0].layers_received, 0u);
+  // The first time b's whole map crossed; this time not a byte of it.
+  const std::size_t b_map_bytes = encode_dsmap(MapSnapshot{"b", {MapLayer{"b", 11, {}, 0, p.b.own}}}).size();
+  EXPECT_EQ(oa[0].snapshot_bytes_received, b_map_bytes);
+  EXPECT_EQ(again[0].snapshot_bytes_received, 0u);
+  EXPECT_LT(again[0].bytes_received, oa[0].bytes_received - b_map_bytes + 100);
+  EXPECT_EQ(p.a.merges, 1);
+}
+
+TEST(EncounterEngine, TheOutcomeDoesNotDependOnWhoHearsOfTheEncounterFirst) {
+  Pair both(unconfirmed()), only_b(unconfirmed());
+  both.ea.start("b", 7, 0.0);
+  both.eb.start("a", 7, 0.0);
+  both.pump(0.0);
+  only_b.eb.start("a", 7, 0.0);  // a joins when b's offer arrives
+  only_b.pump(0.0);
+  const auto x = both.ea.take_outcomes(), y = only_b.ea.take_outcomes();
+  ASSERT_EQ(x.size(), 1u);
+  ASSERT_EQ(y.size(), 1u);
+  EXPECT_EQ(x[0].end, y[0].end);
+  EXPECT_TRUE(same(x[0].estimate.b_frame_in_a, y[0].estimate.b_frame_in_a));
+  EXPECT_TRUE(same(x[0].estimate.a_locates_b.best.pose, y[0].estimate.a_locates_b.best.pose));
+}
+
+TEST(EncounterEngine, AFirstVerifiedEstimateWaitsForASecondThatAgrees) {
+  Pair p{SwarmConfig{}};
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  p.pump(0.0);
+  const auto first_a = p.ea.take_outcomes(), first_b = p.eb.take_outcomes();
+  ASSERT_EQ(first_a.size(), 1u);
+  EXPECT_EQ(first_a[0].end, End::rejected);
+  EXPECT_EQ(first_b[0].end, End::rejected);
+  EXPECT_NE(first_a[0].reason.find("unconfirmed: "), std::string::npos);
+  EXPECT_EQ(p.a.merges, 0);
+  p.ea.start("b", 2, 1.0);
+  p.eb.start("a", 2, 1.0);
+  p.pump(1.0);
+  const auto second_a = p.ea.take_outcomes(), second_b = p.eb.take_outcomes();
+  ASSERT_EQ(second_a[0].end, End::accepted) << second_a[0].reason;
+  ASSERT_EQ(second_b[0].end, End::accepted) << second_b[0].reason;
+  EXPECT_EQ(second_a[0].confirmed_by, "earlier encounter");
+  EXPECT_EQ(second_b[0].confirmed_by, "earlier encounter");
+  // A third, once they know each other: confirmed by the transform they hold.
+  p.ea.start("b", 3, 30.0);
+  p.eb.start("a", 3, 30.0);
+  p.pump(30.0);
+  EXPECT_EQ(p.ea.take_outcomes()[0].confirmed_by, "known transform");
+}
+
+TEST(EncounterEngine, WithinTheRemergeIntervalBothDecline) {
+  Pair p(unconfirmed());
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  p.pump(0.0);
+  p.ea.take_outcomes();
+  p.ea.start("b", 2, 5.0);
+  p.eb.start("a", 2, 5.0);
+  p.pump(5.0);
+  const auto o = p.ea.take_outcomes();
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_EQ(o[0].end, End::declined);
+  EXPECT_NE(o[0].reason.find("re-merge interval"), std::string::npos);
+  EXPECT_EQ(p.a.merges, 1);
+}
+
+TEST(EncounterEngine, APeerThatVanishesMidTransferIsDroppedAndItsPartialSnapshotDiscarded) {
+  SwarmConfig config = unconfirmed();
+  config.chunk_bytes = 4096;  // many chunks
+  Pair p(config);
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  int chunks_to_a = 0;
+  // b's chunks stop arriving after the third: b "died" mid-transfer.
+  p.pump(0.0, [&](const Outgoing& out) {
+    const Message m = decode(out.bytes);
+    if (out.recipient == "a" && std::holds_alternative<Chunk>(m.body)) return ++chunks_to_a <= 3;
+    return true;
+  });
+  ASSERT_GT(chunks_to_a, 3);
+  EXPECT_EQ(p.ea.open_encounters(), 1u);
+  EXPECT_GT(p.ea.buffered_bytes(), 0u);
+  p.ea.tick(config.exchange_timeout - 1.0);
+  EXPECT_EQ(p.ea.open_encounters(), 1u);
+  p.ea.tick(config.exchange_timeout + 1.0);
+  EXPECT_EQ(p.ea.open_encounters(), 0u);
+  EXPECT_EQ(p.ea.buffered_bytes(), 0u);
+  const auto o = p.ea.take_outcomes();
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_EQ(o[0].end, End::abandoned);
+  EXPECT_NE(o[0].reason.find("snapshot"), std::string::npos);
+  EXPECT_EQ(p.a.merges, 0);  // nothing half-received reached the map
+}
+
+TEST(EncounterEngine, TransfersBeyondTheMemoryBoundAreAbandoned) {
+  SwarmConfig config = unconfirmed();
+  config.max_transfer_bytes = std::size_t{1} << 20;
+  Pair p(config);
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  // b claims a transfer far larger than a may hold: a gives up before buffering it.
+  p.pump(0.0, [&](const Outgoing& out) {
+    Message m = decode(out.bytes);
+    if (out.recipient != "a" || !std::holds_alternative<Chunk>(m.body)) return true;
+    return false;
+  });
+  ASSERT_EQ(p.ea.open_encounters(), 1u);  // waiting for b's snapshot
+  Chunk huge{1, 0, 4, std::uint64_t{64} << 20, 0, std::vector<std::uint8_t>(1000, 1)};
+  Message m;
+  m.header = {"b", "a", 1, 1000};
+  m.body = huge;
+  p.ea.receive(m, 1100, 0.0);
+  EXPECT_EQ(p.ea.open_encounters(), 0u);
+  EXPECT_EQ(p.ea.buffered_bytes(), 0u);
+  const auto o = p.ea.take_outcomes();
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_NE(o[0].reason.find("more than 1 MiB"), std::string::npos) << o[0].reason;
+  EXPECT_EQ(p.a.merges, 0);
+}
+
+TEST(EncounterEngine, OpenEncountersAreBounded) {
+  SwarmConfig config = unconfirmed();
+  config.max_open_encounters = 2;
+  FakeRobot robot("a", kStartA, {3.0, 2.0, 0.1}, 1);
+  EncounterEngine e("a", config, robot);
+  for (int i = 0; i < 5; ++i) e.start("peer" + std::to_string(i), 1, 0.0);
+  EXPECT_EQ(e.open_encounters(), 2u);
+  const auto o = e.take_outcomes();
+  ASSERT_EQ(o.size(), 3u);
+  for (const auto& x : o) EXPECT_NE(x.reason.find("busy"), std::string::npos);
+  e.drop_peer("peer0", "vanished", 1.0);
+  EXPECT_EQ(e.open_encounters(), 1u);
+  e.abandon_all("stopped", 2.0);
+  EXPECT_EQ(e.open_encounters(), 0u);
+  const auto ended = e.take_outcomes();
+  ASSERT_EQ(ended.size(), 2u);
+  EXPECT_EQ(ended[1].reason, "stopped");
+}
+
+}  // namespace
+}  // namespace dsswarm::protocol

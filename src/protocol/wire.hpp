@@ -1,0 +1,48 @@
+#pragma once
+// Swarm messages as bytes (all integers little-endian, floats IEEE 754):
+//
+//   "DSWM"  u16 protocol version  u8 kind
+//   str sender  str recipient  u64 incarnation  u64 sequence
+//   u32 body bytes  <body>  u32 CRC-32 of everything before it
+//   (str = u32 byte length + UTF-8 bytes)
+//
+// Bodies (messages.hpp), field by field in declaration order; a pose is three
+// f64 (x, y, θ); a point list is u32 count + count × (f32 x, f32 y, f32
+// weight); optionals are a u8 flag (0/1) then the value; lists a u32 count.
+//
+// decode() checks everything before anything is used: magic, version, kind,
+// sizes against the limits, the checksum, names, finite numbers, ratios in
+// [0, 1], chunk indices. A peer's bytes can at worst be refused.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "protocol/messages.hpp"
+
+namespace dsswarm::protocol {
+
+// A message that cannot be used: malformed, too large, another version.
+class ProtocolError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+struct WireLimits {
+  std::size_t max_message_bytes = 1 << 20;    // one message (a chunk carries at most ~this)
+  std::size_t max_points = 20000;             // per point list of an offer
+  std::size_t max_inventory = 1024;           // layers an offer may list
+  std::size_t max_confirmations = 64;
+  std::size_t max_text = 1024;                // a decline's reason
+  std::uint32_t max_chunks = 1 << 16;         // per transfer
+  std::uint64_t max_transfer_bytes = 1ull << 30;
+};
+
+std::vector<std::uint8_t> encode(const Message& message);
+
+// Throws ProtocolError saying what is wrong (and, once it can be read, who sent it).
+Message decode(std::span<const std::uint8_t> bytes, const WireLimits& limits = {});
+
+}  // namespace dsswarm::protocol

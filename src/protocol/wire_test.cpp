@@ -1,0 +1,153 @@
+#include "protocol/wire.hpp"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <limits>
+
+namespace dsswarm::protocol {
+namespace {
+
+Message with(Body body, std::string recipient = "robot2") {
+  return Message{Header{"robot1", std::move(recipient), 1234567, 42}, std::move(body)};
+}
+
+Offer sample_offer() {
+  Offer o;
+  o.encounter = 7;
+  o.stamp = 976052000.125;
+  o.pose = {1.5, -2.0, 0.3};
+  o.points = {{1.0f, 2.0f, 1.5f}, {-0.5f, 3.25f, 1.0f}};
+  o.surroundings = {{4.0f, 4.0f, 1.0f}};
+  o.wide_surroundings = {};
+  o.inventory = {{"robot1", 120, 0}, {"robot3", 40, 2}};
+  return o;
+}
+
+Placement sample_placement() {
+  Placement p;
+  p.encounter = 7;
+  p.placement.valid = true;
+  p.placement.located.best = {{2.0, 1.0, -0.2}, 0.8, 0.6, 0.9, 0.95, 0.85};
+  p.placement.located.runner_up = PoseHypothesis{{5.0, 1.0, 2.0}, 0.5, 0.2, 0.4, 0.9, 0.3};
+  p.placement.located.evaluations = 9000;
+  p.placement.wide = Pose2{2.01, 1.0, -0.21};
+  p.known_transform = Pose2{0.1, 0.2, 0.3};
+  p.pending = {{1.0, 2.0, 3.0}};
+  p.compute_ms = 321.5;
+  return p;
+}
+
+// Re-seals a message whose bytes a test altered, so that only the change is wrong.
+void reseal(std::vector<std::uint8_t>& bytes) {
+  const auto crc = static_cast<std::uint32_t>(crc32_z(0, bytes.data(), bytes.size() - 4));
+  for (int i = 0; i < 4; ++i) bytes[bytes.size() - 4 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+}
+
+std::string error_of(const std::vector<std::uint8_t>& bytes, const WireLimits& limits = {}) {
+  try {
+    decode(bytes, limits);
+  } catch (const ProtocolError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Wire, EveryKindRoundTrips) {
+  AgentStatus s{12.5, 100, 90, 10, 9.5, 2, 3, 1, 4.5, 88, 6};
+  Proximity near{"robot1", "robot2", 99, 976052000.5, std::numeric_limits<double>::quiet_NaN()};
+  Chunk c{7, 1, 3, 150000, 0xdeadbeef, std::vector<std::uint8_t>(1000, 0xab)};
+  const std::vector<Body> bodies{Heartbeat{s}, near, sample_offer(), Decline{7, "no scan yet"}, sample_placement(), c};
+  for (const Body& body : bodies) {
+    const Message in = with(body);
+    const Message out = decode(encode(in));
+    EXPECT_EQ(kind_of(out.body), kind_of(in.body));
+    EXPECT_EQ(out.header.sender, "robot1");
+    EXPECT_EQ(out.header.recipient, "robot2");
+    EXPECT_EQ(out.header.incarnation, 1234567u);
+    EXPECT_EQ(out.header.sequence, 42u);
+    EXPECT_EQ(encode(out), encode(in)) << kind_name(kind_of(in.body));  // every field survived
+  }
+  const Offer o = std::get<Offer>(decode(encode(with(sample_offer()))).body);
+  EXPECT_EQ(o.inventory, sample_offer().inventory);
+  EXPECT_FLOAT_EQ(o.points[1].y, 3.25f);
+  const Placement p = std::get<Placement>(decode(encode(with(sample_placement()))).body);
+  ASSERT_TRUE(p.placement.located.runner_up);
+  EXPECT_DOUBLE_EQ(p.placement.located.runner_up->surroundings_score, 0.2);
+  EXPECT_TRUE(std::isnan(std::get<Proximity>(decode(encode(with(near))).body).b_stamp));
+}
+
+TEST(Wire, DamagedOrForeignBytesAreRefusedWithTheReason) {
+  const std::vector<std::uint8_t> good = encode(with(sample_offer()));
+  EXPECT_NE(error_of({}).find("shorter"), std::string::npos);
+  for (std::size_t n : {std::size_t{10}, good.size() / 2, good.size() - 1}) {
+    const std::vector<std::uint8_t> cut(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n));
+    EXPECT_FALSE(error_of(cut).empty()) << n;
+  }
+  auto flipped = good;
+  flipped[good.size() / 2] ^= 0x10;
+  EXPECT_NE(error_of(flipped).find("checksum"), std::string::npos);
+  auto magic = good;
+  magic[0] = 'X';
+  EXPECT_NE(error_of(magic).find("magic"), std::string::npos);
+  auto version = good;
+  version[4] = 9;
+  reseal(version);
+  EXPECT_NE(error_of(version).find("protocol version 9"), std::string::npos);
+  auto kind = good;
+  kind[6] = 77;
+  reseal(kind);
+  EXPECT_NE(error_of(kind).find("kind 77"), std::string::npos);
+  auto trailing = good;
+  trailing.insert(trailing.end() - 4, 0);
+  reseal(trailing);
+  EXPECT_NE(error_of(trailing).find("body size"), std::string::npos);
+  WireLimits small;
+  small.max_message_bytes = 100;
+  EXPECT_NE(error_of(good, small).find("exceeds"), std::string::npos);
+}
+
+TEST(Wire, NonsenseValuesAreRefusedBeforeUse) {
+  Offer nan_pose = sample_offer();
+  nan_pose.pose.x = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(error_of(encode(with(nan_pose))).find("pose is not finite"), std::string::npos);
+  Offer inf_point = sample_offer();
+  inf_point.points[0].x = std::numeric_limits<float>::infinity();
+  EXPECT_NE(error_of(encode(with(inf_point))).find("not finite"), std::string::npos);
+  Offer many = sample_offer();
+  many.points.assign(30000, ScanPoint{});
+  EXPECT_NE(error_of(encode(with(many))).find("at most 20000"), std::string::npos);
+  Offer bad_origin = sample_offer();
+  bad_origin.inventory[0].origin = "../etc";
+  EXPECT_NE(error_of(encode(with(bad_origin))).find("not a valid agent name"), std::string::npos);
+  Placement ratio = sample_placement();
+  ratio.placement.located.best.inlier_ratio = 1.5;
+  EXPECT_NE(error_of(encode(with(ratio))).find("inlier ratio"), std::string::npos);
+  Chunk out_of_range{7, 3, 3, 100, 0, {1, 2, 3}};
+  EXPECT_NE(error_of(encode(with(out_of_range))).find("out of range"), std::string::npos);
+  Chunk too_big{7, 0, 1, std::uint64_t{1} << 40, 0, {1}};
+  EXPECT_NE(error_of(encode(with(too_big))).find("at most"), std::string::npos);
+  EXPECT_NE(error_of(encode(with(Proximity{"robot1", "robot1", 1}))).find("twice"), std::string::npos);
+  Message bad_sender = with(Decline{1, "x"});
+  bad_sender.header.sender = "a b";
+  EXPECT_NE(error_of(encode(bad_sender)).find("sender"), std::string::npos);
+}
+
+TEST(Wire, LengthFieldsCannotMakeTheReaderAllocateOrOverrun) {
+  // A point count that claims more points than the bytes left is refused
+  // before anything is allocated.
+  std::vector<std::uint8_t> bytes = encode(with(sample_offer()));
+  // The offer's point count follows u64 id, f64 stamp and three f64 pose
+  // fields at the start of the body.
+  const std::size_t body = 4 + 2 + 1 + (4 + 6) + (4 + 6) + 8 + 8 + 4;
+  const std::size_t count_at = body + 8 + 8 + 24;
+  ASSERT_EQ(bytes[count_at], 2);  // two points
+  bytes[count_at] = 0xff;
+  bytes[count_at + 1] = 0x0f;
+  reseal(bytes);
+  EXPECT_NE(error_of(bytes).find("cannot fit"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dsswarm::protocol

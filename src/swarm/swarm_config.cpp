@@ -1,0 +1,20 @@
+#include "swarm/swarm_config.hpp"
+
+#include "common/errors.hpp"
+
+namespace dsswarm {
+
+void SwarmConfig::validate() const {
+  slam.validate();
+  encounter.validate();
+  if (!(remerge_interval >= 0.0)) throw ConfigError("swarm.remerge_interval must be >= 0 s");
+  if (!(confirm_xy > 0.0) || !(confirm_theta > 0.0)) throw ConfigError("swarm.confirm_xy and confirm_theta must be > 0");
+  if (!(exchange_timeout > 0.0)) throw ConfigError("swarm.exchange_timeout must be > 0 s");
+  if (chunk_bytes < 1024 || chunk_bytes > 512 * 1024) throw ConfigError("swarm.chunk_bytes must be in [1024, 524288]");
+  if (max_open_encounters < 1) throw ConfigError("swarm.max_open_encounters must be >= 1");
+  if (max_transfer_bytes < (std::size_t{1} << 20)) throw ConfigError("swarm.max_transfer_bytes must be >= 1 MiB");
+  if (max_pending_confirmations < 1 || max_pending_confirmations > 64)
+    throw ConfigError("swarm.max_pending_confirmations must be in [1, 64]");
+}
+
+}  // namespace dsswarm

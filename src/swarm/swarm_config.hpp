@@ -1,0 +1,43 @@
+#pragma once
+// Settings of a robot in a swarm: its SLAM, how it judges an encounter, and
+// how it talks to the others (the same for every robot of a swarm).
+#include <cstddef>
+
+#include "slam/slam.hpp"
+#include "swarm/encounter.hpp"
+
+namespace dsswarm {
+
+struct SwarmConfig {
+  SlamConfig slam;
+  EncounterConfig encounter;
+  // Robots that met with an accepted merge skip further encounters for this
+  // long (their maps have not changed much); rejected ones retry at once.
+  double remerge_interval = 10.0;  // s
+  // false: encounters are ignored and every robot maps alone (the baseline
+  // merging is measured against).
+  bool merge = true;
+  // A verified transform is merged on only once a second, independent
+  // estimate of the same transform agrees with it: an earlier encounter of
+  // the pair, or the transform already known (directly or through a third
+  // robot). Two robots facing each other in a symmetric corridor can agree on
+  // a wrong placement, both ways, at one moment; they almost never do twice,
+  // from other places. Agreement is measured at robot B's position.
+  bool confirm = true;
+  double confirm_xy = 0.25;      // m
+  double confirm_theta = 0.035;  // rad (2°)
+  // The exchange itself (protocol/): an encounter not finished in this long
+  // is abandoned, its partial transfer discarded (a peer vanished).
+  double exchange_timeout = 30.0;       // s
+  std::size_t chunk_bytes = 60000;      // snapshot bytes per message
+  std::size_t max_open_encounters = 16; // at once, with any peers (bounds memory)
+  std::size_t max_pending_confirmations = 16;  // per peer, oldest dropped
+  // Snapshot bytes held by all incoming transfers together; a transfer that
+  // would go beyond is abandoned (many peers at once must not exhaust a
+  // small robot's memory). A 100 m × 100 m map travels in ~3 MB.
+  std::size_t max_transfer_bytes = std::size_t{256} << 20;
+
+  void validate() const;  // throws ConfigError naming the field
+};
+
+}  // namespace dsswarm
