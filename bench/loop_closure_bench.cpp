@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     const SimulatedRun run = simulate(scene, static_cast<std::uint64_t>(seed));
     Trajectory truth;
     for (const auto& [t, p] : run.ground_truth) truth.push_back({t, p});
-    SlamConfig config;
+    SlamConfig config = with_loop_closure();
     config.seed = static_cast<std::uint64_t>(seed);
     Slam slam(config);
     for (const LaserScan& s : run.log.scans) slam.process(s);

@@ -28,7 +28,8 @@ run_one() {
   # shellcheck disable=SC2086 # EXTRA and the per-log flags are lists of flags
   "$bin" run "$data/carmen/$d.log.gz" --out "$dir" --seed "$s" $EXTRA ${!own:-} > "$dir.log" 2>&1 || { echo "$d seed $s: run failed (see $dir.log)"; return; }
   local m; m=$("$bin" eval relations "$dir/trajectory.tum" "$data/relations/$d.relations" | tail -n 1)
-  local f; f=$("$bin" eval relations "$dir/trajectory_frontend.tum" "$data/relations/$d.relations" | tail -n 1)
+  local f='{"trans_mean": null}'  # a binary from before loop closure writes no front-end trajectory
+  [ -f "$dir/trajectory_frontend.tum" ] && f=$("$bin" eval relations "$dir/trajectory_frontend.tum" "$data/relations/$d.relations" | tail -n 1)
   echo "$d $s $m $f" > "$dir.metrics"
   echo "$d seed $s $m"
 }
@@ -52,7 +53,7 @@ for d in sys.argv[2:]:
                          bg=st.get("background_cpu_seconds", 0.0), searches=lc.get("searches", 0),
                          candidates=lc.get("candidates", 0), accepted=lc.get("accepted", 0)))
     if not rows: continue
-    med = lambda k: statistics.median(r[k] for r in rows)
+    med = lambda k: statistics.median(r[k] for r in rows) if all(r[k] is not None for r in rows) else float("nan")
     t = [r["t"] for r in rows]
     print(f"{d:10s} trans_mean median {med('t'):.4f} m, worst {max(t):.4f} m (worst/median {max(t)/med('t'):.2f}), "
           f"rot median {med('r'):.2f} deg, front end median {med('front'):.4f} m | scans/s median {med('sps'):.0f}, "

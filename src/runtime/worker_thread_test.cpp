@@ -71,9 +71,9 @@ TEST(WorkerThread, LoopClosingInTheBackgroundGivesTheSameResultAsInline) {
   RobotConfig robot;
   robot.odom_drift = 0.05;
   const SimulatedRun sim = simulate_run(w.world, w.tour, w.start, robot, lidar, 2);
-  Slam inline_slam;
+  Slam inline_slam(with_loop_closure());
   WorkerThread worker;
-  Slam background_slam(SlamConfig{}, &worker);
+  Slam background_slam(with_loop_closure(), &worker);
   for (const LaserScan& s : sim.log.scans) {
     const SlamStep a = inline_slam.process(s), b = background_slam.process(s);
     ASSERT_EQ(a.pose.x, b.pose.x);

@@ -42,7 +42,7 @@ void run(Slam& slam, const SimulatedRun& sim) {
 
 TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
   const SimulatedRun sim = long_loop();
-  Slam slam;
+  Slam slam(with_loop_closure());
   run(slam, sim);
   const Trajectory truth = truth_of(sim);
   const double local = evaluate_ate(stamped(sim, slam.local_trajectory()), truth).rmse;
@@ -62,7 +62,7 @@ TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
 
 TEST(LoopClosing, NodesHangOnTheirSubmapsAndTheGlobalMapIsTheSubmapsAtTheirPoses) {
   const SimulatedRun sim = long_loop(1.1);
-  Slam slam;
+  Slam slam(with_loop_closure());
   run(slam, sim);
   const LoopCloser& closer = slam.loop_closer();
   const std::vector<const Submap*> submaps = slam.submaps().all();
@@ -103,10 +103,10 @@ TEST(LoopClosing, NodesHangOnTheirSubmapsAndTheGlobalMapIsTheSubmapsAtTheirPoses
 
 TEST(LoopClosing, LocalizingInASavedMapLeavesItUnchanged) {
   const SimulatedRun sim = long_loop(1.1);
-  Slam mapping;
+  Slam mapping(with_loop_closure());
   run(mapping, sim);
   const MultiResMap saved = mapping.own_map();
-  Slam localizing(SlamConfig{}, saved, sim.log.scans.front().odometry.value_or(Pose2()) * Pose2(0.1, -0.1, 0.03),
+  Slam localizing(with_loop_closure(), saved, sim.log.scans.front().odometry.value_or(Pose2()) * Pose2(0.1, -0.1, 0.03),
                   MapUse::localize);
   run(localizing, sim);
   EXPECT_EQ(localizing.scans_inserted(), 0u);

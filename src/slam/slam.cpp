@@ -20,6 +20,19 @@ void SlamConfig::validate() const {
   if (pause_after_still_scans < 0) throw ConfigError("slam.pause_after_still_scans must be >= 0");
 }
 
+SubmapConfig SlamConfig::active_submaps() const {
+  if (loop_closure.enabled) return submaps;
+  SubmapConfig one = submaps;
+  one.max_scans = 0;
+  one.max_travel = 0.0;
+  return one;
+}
+
+SlamConfig with_loop_closure(SlamConfig config) {
+  config.loop_closure.enabled = true;
+  return config;
+}
+
 namespace {
 const SlamConfig& validated(const SlamConfig& config) {
   config.validate();
@@ -36,7 +49,7 @@ Slam::Slam(const SlamConfig& config, Executor* background)
       matcher_(config.matcher, config.seed),
       verifier_(config.verify),
       recovery_(config.matcher, config.seed + 1),
-      submaps_(config.map, config.submaps, config.insert),
+      submaps_(config.map, config.active_submaps(), config.insert),
       closer_(config.loop_closure, config.map, config.points, config.seed + 2, background) {}
 
 Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use, Executor* background)
@@ -56,7 +69,7 @@ bool Slam::filter_keeps(const LaserScan& scan) {
 }
 
 const MultiResMap& Slam::matching_map() const {
-  if (working_ && config_.submaps.single_map() && !localize_only_) return *working_;
+  if (working_ && config_.active_submaps().single_map() && !localize_only_) return *working_;
   return submaps_.local_map();
 }
 

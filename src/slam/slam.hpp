@@ -61,9 +61,14 @@ struct SlamConfig {
   // first moved) is standing still (see standing_still.hpp). Needs use_odometry.
   int pause_after_still_scans = 20;  // 0: never pause
   InsertConfig insert;
+  // Submaps are what loop closure works on, so they are used only with it
+  // (loop_closure.enabled, off by default): without it one map, which local
+  // SLAM matches better against on revisits (figures in docs/loop_closure.md).
   SubmapConfig submaps{.max_scans = 150, .max_travel = 15.0};
   LoopClosureConfig loop_closure;
 
+  // `submaps` with loop closure on; one map (no submaps) without it.
+  SubmapConfig active_submaps() const;
   void validate() const;
 };
 
@@ -82,6 +87,9 @@ struct SlamStep {
 };
 
 // What a given map is for.
+// `config` with loop closure on (submaps, loop-closure rounds, pose graph).
+SlamConfig with_loop_closure(SlamConfig config = {});
+
 enum class MapUse {
   extend,    // keep mapping in it (new evidence in new submaps)
   localize,  // localize in it; it never changes
