@@ -4,6 +4,7 @@
 # Prints one line per run and a summary per dataset; runs two at a time (JOBS=1 for timing).
 # BIN picks the dsswarm binary (default build/dsswarm). Flags for one log only:
 # FLAGS_fr079="--laser-offset -0.04 0 0" (likewise FLAGS_intel, FLAGS_mit_csail).
+# Loop closure on: -- --config FILE with {"loop_closure": {"enabled": true}} (docs/loop_closure.md).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 data=${DSSWARM_DATA:-$here/../shared/data}
