@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
-  libpng-dev zlib1g-dev libzstd-dev libyaml-cpp-dev libsqlite3-dev liblz4-dev
+  libpng-dev zlib1g-dev libzstd-dev libyaml-cpp-dev libsqlite3-dev liblz4-dev libceres-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
   cyclonedds-dev cyclonedds-tools libssl-dev

@@ -11,10 +11,12 @@
 #include "apps/slam_options.hpp"
 #include "apps/slam_runner.hpp"
 #include "common/errors.hpp"
+#include "common/process_usage.hpp"
 #include "config/config_json.hpp"
 #include "io/logs/log_reader.hpp"
 #include "io/maps/dsmap.hpp"
 #include "io/output_paths.hpp"
+#include "runtime/worker_thread.hpp"
 
 namespace dsswarm {
 namespace {
@@ -33,6 +35,7 @@ struct RunArgs {
   std::vector<double> start_pose;  // x y theta in the loaded map's frame
   std::size_t max_scans = 0;       // only the first N scans, 0: all (benchmarks, profiling)
   bool no_images = false;          // trajectory and stats only
+  bool localize = false;   // with load_map: localize in it without changing it
   SlamOptions slam;
 };
 
@@ -81,16 +84,24 @@ void run(const RunArgs& a) {
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same
   // start) starts there by default.
+  // Loop closing runs on a thread of its own (declared first: it outlives the Slam).
+  WorkerThread background;
   std::unique_ptr<Slam> slam;
   if (continued) {
     const Pose2 start = start_pose ? *start_pose : log.scans.front().odometry.value_or(Pose2());
-    slam = std::make_unique<Slam>(config, std::move(continued->map), start);
+    slam = std::make_unique<Slam>(config, std::move(continued->map), start,
+                                  a.localize ? MapUse::localize : MapUse::extend, &background);
   } else {
-    slam = std::make_unique<Slam>(config);
+    slam = std::make_unique<Slam>(config, &background);
   }
-  const RunResult result = run_slam(log, *slam);
+  const double cpu0 = cpu_seconds();
+  const RunResult result = run_slam_releasing(log, *slam);
   nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
+  stats["cpu_seconds"] = cpu_seconds() - cpu0;
+  stats["background_cpu_seconds"] = background.cpu_seconds();
+  stats["waited_seconds"] = background.waited_seconds();
   if (!a.load_map.empty()) stats["load_map"] = a.load_map;
+  if (a.localize) stats["localize"] = true;
   OutputFiles files = run_output_files(a.out, result, *slam, stats, nullptr, !a.no_images);
   if (!a.save_map.empty()) {
     const std::vector<std::uint8_t> map =
@@ -120,6 +131,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--save-map", args->save_map, "Write the robot's map at the end of the run (.dsmap, see README)");
   CLI::Option* load = cmd->add_option("--load-map", args->load_map,
                                       "Continue mapping in a saved map (.dsmap; layer 0, with the file's evidence model)");
+  cmd->add_flag("--localize", args->localize,
+               "With --load-map: localize in the map without changing it (no new evidence, no loop closing); "
+               "--save-map then writes it unchanged")
+      ->needs(load);
   cmd->add_option("--start-pose", args->start_pose,
                   "With --load-map: robot pose at the first scan in the map's frame, X Y THETA (m, m, rad); "
                   "default: the first scan's odometry pose")

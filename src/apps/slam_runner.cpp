@@ -20,18 +20,17 @@ using Clock = std::chrono::steady_clock;
 
 constexpr Rgb kGroundTruthColour{40, 170, 60};
 
-RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
+namespace {
+
+RunResult run(const SensorLog& log, Slam& slam, const std::string& label, SensorLog* release) {
   RunResult result;
-  result.trajectory.reserve(log.scans.size());
   const auto start = Clock::now();
   auto next_report = start + std::chrono::seconds(2);
   const std::size_t total = log.scans.size();
   const std::size_t first_index = slam.scans_processed();  // step indices count every scan the Slam saw
   for (std::size_t i = 0; i < total; ++i) {
-    const LaserScan& scan = log.scans[i];
-    const SlamStep step = slam.process(scan);
-    result.trajectory.push_back({scan.timestamp, step.pose});
-    for (const PoseRevision& r : step.revised) result.trajectory[r.index - first_index].pose = r.pose;
+    slam.process(log.scans[i]);
+    if (release) std::vector<float>().swap(release->scans[i].ranges);
     if (!label.empty() && (i & 63) == 0 && Clock::now() >= next_report) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const double rate = static_cast<double>(i + 1) / elapsed;
@@ -41,10 +40,28 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
       next_report = Clock::now() + std::chrono::seconds(2);
     }
   }
+  slam.finish();
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const std::vector<Pose2> optimized = slam.trajectory(), local = slam.local_trajectory();
+  result.trajectory.reserve(total);
+  result.frontend.reserve(total);
+  for (std::size_t i = 0; i < total; ++i) {
+    result.trajectory.push_back({log.scans[i].timestamp, optimized[first_index + i]});
+    result.frontend.push_back({log.scans[i].timestamp, local[first_index + i]});
+  }
   result.scans_read = total;
   result.scans_matched = slam.scans_matched();
   return result;
+}
+
+}  // namespace
+
+RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
+  return run(log, slam, label, nullptr);
+}
+
+RunResult run_slam_releasing(SensorLog& log, Slam& slam, const std::string& label) {
+  return run(log, slam, label, &log);
 }
 
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds) {
@@ -66,6 +83,26 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   j["cells_allocated"] = cells;
   j["map_bytes"] = slam.map().memory_bytes();
   j["bytes_per_cell"] = cells > 0 ? static_cast<double>(slam.map().memory_bytes()) / static_cast<double>(cells) : 0.0;
+  j["submaps"] = slam.submaps().finished().size() + (slam.submaps().current().scans > 0 ? 1 : 0);
+  j["submap_bytes"] = slam.submaps().memory_bytes();
+  const LoopCloser& closer = slam.loop_closer();
+  const LoopClosureStats& lc = closer.stats();
+  j["loop_closure"] = {{"nodes", closer.nodes()},
+                       {"graph_bytes", closer.memory_bytes()},
+                       {"rounds", lc.rounds},
+                       {"optimizations", lc.optimizations},
+                       {"searches", lc.searches},
+                       {"candidates", lc.candidates},
+                       {"accepted", lc.accepted},
+                       {"rejected",
+                        {{"no_match", lc.rejected_no_match},
+                         {"unknown", lc.rejected_unknown},
+                         {"inliers", lc.rejected_inliers},
+                         {"same_side", lc.rejected_same_side},
+                         {"ambiguous", lc.rejected_ambiguous},
+                         {"inconsistent", lc.rejected_inconsistent},
+                         {"residual", lc.rejected_residual}}},
+                       {"round_seconds", lc.background_seconds}};
   j["warnings"] = log.warnings;
   j["config"] = to_json(slam.config());
   return j;
@@ -89,6 +126,7 @@ OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& 
     throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
   OutputFiles files;
   files.add(dir / "trajectory.tum", format_tum(dir / "trajectory.tum", result.trajectory));
+  files.add(dir / "trajectory_frontend.tum", format_tum(dir / "trajectory_frontend.tum", result.frontend));
   if (!images) {
     files.add(dir / "stats.json", stats.dump(2) + "\n");
     return files;

@@ -16,15 +16,21 @@
 namespace dsswarm {
 
 struct RunResult {
-  Trajectory trajectory;         // one pose per scan of the log, file order
+  Trajectory trajectory;         // one pose per scan of the log, file order: optimized (after loop closing)
+  Trajectory frontend;           // the same scans as local SLAM first estimated them (its local frame)
   std::size_t scans_read = 0;
   std::size_t scans_matched = 0;
   double wall_seconds = 0.0;     // SLAM processing only (no reading, no writing)
 };
 
-// Feeds every scan of `log` to `slam`. Prints a progress line to stderr every
-// couple of seconds when `label` is not empty and the run takes that long.
+// Feeds every scan of `log` to `slam`, then finishes it (the last loop-closing
+// round is part of the run). Prints a progress line to stderr every couple of
+// seconds when `label` is not empty and the run takes that long.
 RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label = "run");
+// The same, letting go of each scan's ranges once processed (the timestamps
+// stay): like a robot, which keeps its map and not its scans, a run then
+// holds only the part of the log still to come.
+RunResult run_slam_releasing(SensorLog& log, Slam& slam, const std::string& label = "run");
 
 // stats.json contents: the keys promised in the README.
 nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds);
@@ -36,7 +42,8 @@ bool has_returns(const std::vector<LaserScan>& scans);
 // nothing but max-range readings would give an empty map.
 void require_returns(const SensorLog& log);
 
-// trajectory.tum, map.pgm + map.yaml (ROS map_server), map.png (map with the
+// trajectory.tum (optimized), trajectory_frontend.tum (as first estimated),
+// map.pgm + map.yaml (ROS map_server), map.png (map with the
 // trajectory, and `ground_truth` in another colour if given), stats.json, in
 // memory (without `images`, trajectory.tum and stats.json only): InputError if
 // the map is empty, before anything is written.

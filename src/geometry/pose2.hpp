@@ -22,23 +22,41 @@ struct Pose2 {
   Pose2(double x_, double y_, double theta_) : x(x_), y(y_), theta(normalize_angle(theta_)) {}
 
   // Composition: (*this) ⊕ other, i.e. `other` expressed in this pose's frame.
-  Pose2 operator*(const Pose2& other) const {
-    const double c = std::cos(theta), s = std::sin(theta);
-    return {x + c * other.x - s * other.y, y + s * other.x + c * other.y, theta + other.theta};
-  }
+  Pose2 operator*(const Pose2& other) const;
 
   Pose2 inverse() const {
     const double c = std::cos(theta), s = std::sin(theta);
     return {-(c * x + s * y), s * x - c * y, -theta};
   }
 
-  Eigen::Vector2d operator*(const Eigen::Vector2d& p) const {
-    const double c = std::cos(theta), s = std::sin(theta);
-    return {x + c * p.x() - s * p.y(), y + s * p.x() + c * p.y()};
-  }
+  Eigen::Vector2d operator*(const Eigen::Vector2d& p) const;
 
   Eigen::Vector2d translation() const { return {x, y}; }
 };
+
+// A pose as a point transform with its cosine and sine computed once: the
+// one implementation of p_parent = R(theta) * p_local + (x, y), for code that
+// transforms many points by the same pose.
+struct PointTransform {
+  double c = 1.0, s = 0.0, x = 0.0, y = 0.0;
+
+  explicit PointTransform(const Pose2& pose)
+      : c(std::cos(pose.theta)), s(std::sin(pose.theta)), x(pose.x), y(pose.y) {}
+  // A pure rotation by `theta` as given (not wrapped into (-pi, pi]).
+  static PointTransform rotation(double theta) { return PointTransform(std::cos(theta), std::sin(theta)); }
+
+  Eigen::Vector2d operator()(double px, double py) const { return {x + c * px - s * py, y + s * px + c * py}; }
+
+ private:
+  PointTransform(double cos_theta, double sin_theta) : c(cos_theta), s(sin_theta) {}
+};
+
+inline Eigen::Vector2d Pose2::operator*(const Eigen::Vector2d& p) const { return PointTransform(*this)(p.x(), p.y()); }
+
+inline Pose2 Pose2::operator*(const Pose2& other) const {
+  const Eigen::Vector2d t = PointTransform(*this)(other.x, other.y);
+  return {t.x(), t.y(), theta + other.theta};
+}
 
 // Motion from a to b expressed in a's frame: a⁻¹ ⊕ b.
 inline Pose2 between(const Pose2& a, const Pose2& b) { return a.inverse() * b; }

@@ -80,7 +80,11 @@ class DsGrid {
   }
 
   // Write access: allocates the tile if needed.
-  DsMass& mutable_at(CellIndex c) { return get_or_create_tile(c).cells[local_index(c)]; }
+  DsMass& mutable_at(CellIndex c) {
+    // Inline when the tile exists (insertion writes mostly into existing tiles).
+    if (Tile* t = find_tile(c)) return t->cells[local_index(c)];
+    return get_or_create_tile(c).cells[local_index(c)];
+  }
 
   std::size_t tiles_allocated() const { return tiles_.size(); }
   std::size_t cells_allocated() const { return tiles_.size() * kTileCells; }
@@ -114,7 +118,9 @@ class DsGrid {
   static int local_index(CellIndex c) {
     return ((c.y & (kTileSize - 1)) << kTileBits) | (c.x & (kTileSize - 1));
   }
-  const Tile* find_tile(CellIndex c) const {
+  // The tile holding `c`, or null (the table holds mutable tiles; const
+  // accessors only read through it).
+  Tile* find_tile(CellIndex c) const {
     const std::int32_t tx = (c.x >> kTileBits) - table_origin_.x;
     const std::int32_t ty = (c.y >> kTileBits) - table_origin_.y;
     if (tx < 0 || ty < 0 || tx >= table_width_ || ty >= table_height_) return nullptr;

@@ -2,7 +2,9 @@
 
 #include <string>
 
+#include "common/errors.hpp"
 #include "grid/ray_traversal.hpp"
+#include "grid/sampling.hpp"
 
 namespace dsswarm {
 
@@ -22,23 +24,42 @@ MultiResMap::MultiResMap(const MapConfig& config) : config_(config) {
 
 void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_base,
                               const std::vector<ScanPoint>& points) {
+  MultiResMap* self[] = {this};
+  insert_scan(self, robot_pose, laser_in_base, points);
+}
+
+void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& robot_pose, const Pose2& laser_in_base,
+                              const std::vector<ScanPoint>& points) {
+  if (maps.empty()) return;
+  const MapConfig& config = maps.front()->config_;
+  for (MultiResMap* m : maps)
+    if (m->config_.resolution != config.resolution || m->levels() != maps.front()->levels())
+      throw ConfigError("MultiResMap::insert_scan: the maps differ in resolution or levels");
+  // Applies `update` to cell c of every map's grid at `level`.
+  const auto each = [&maps](std::size_t level, CellIndex c, auto&& update) {
+    for (MultiResMap* m : maps) {
+      DsMass& cell = m->grids_[level].mutable_at(c);
+      cell = update(cell);
+    }
+  };
   const Pose2 laser = robot_pose * laser_in_base;
   const Eigen::Vector2d origin = laser.translation();
   std::vector<Eigen::Vector2d> hits;
   hits.reserve(points.size());
-  for (const ScanPoint& p : points) hits.push_back(robot_pose * Eigen::Vector2d(p.x, p.y));
+  const PointTransform to_world(robot_pose);
+  for (const ScanPoint& p : points) hits.push_back(to_world(p.x, p.y));
 
-  const EvidenceModel& ev = config_.evidence;
+  const EvidenceModel& ev = config.evidence;
   const DsMass pass = ev.pass(), hit = ev.hit();
-  for (std::size_t level = 0; level < grids_.size(); ++level) {
-    DsGrid& grid = grids_[level];
+  for (std::size_t level = 0; level < maps.front()->grids_.size(); ++level) {
+    const DsGrid& grid = maps.front()->grids_[level];
     // Free evidence first, hits last: a cell that one beam ends in and a
     // neighbouring grazing beam passes through keeps its hit for this scan.
     // Coarse levels take hits only: a 20 cm cell holding a wall is also
     // crossed by grazing beams, and free evidence would erode the very cells
     // that guide the coarse search (see MapConfig::free_space_on_coarse_levels).
-    if (level == 0 || config_.free_space_on_coarse_levels) {
-      const double margin = config_.free_margin_cells * grid.resolution();
+    if (level == 0 || config.free_space_on_coarse_levels) {
+      const double margin = config.free_margin_cells * grid.resolution();
       for (const Eigen::Vector2d& h : hits) {
         const Eigen::Vector2d beam = h - origin;
         const double length = beam.norm();
@@ -46,42 +67,38 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
         // traverse_ray leaves out the cell holding its end, so the hit's own
         // cell never gets free evidence, whatever the margin.
         const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
-        traverse_ray(origin, end, grid.resolution(), [&](CellIndex c) {
-          DsMass& m = grid.mutable_at(c);
-          m = ev.update(m, pass);
-        });
+        traverse_ray(origin, end, grid.resolution(),
+                     [&](CellIndex c) { each(level, c, [&](const DsMass& m) { return ev.update(m, pass); }); });
       }
     }
-    const bool splat = level > 0 || config_.splat_fine_hits;
-    if (!splat && config_.surface_gap > 0.0) {
+    const bool splat = level > 0 || config.splat_fine_hits;
+    if (!splat && config.surface_gap > 0.0) {
       // Neighbouring returns closer than `surface_gap` lie on one surface:
       // mark the cells between them as (weakly) occupied too. Otherwise a
       // wall seen at a grazing angle is a dotted line whose dots sit exactly
       // where this viewpoint's beams ended, and the next scan, taken a few
       // centimetres further on, fits the map best by pretending not to have
       // moved.
-      const DsMass between_hits{hit.occupied * config_.surface_mass_factor, 0.0f};
+      const DsMass between_hits{hit.occupied * config.surface_mass_factor, 0.0f};
       for (std::size_t i = 1; i < hits.size(); ++i) {
         const Eigen::Vector2d segment = hits[i] - hits[i - 1];
         const double length = segment.norm();
-        if (length > config_.surface_gap || length == 0.0) continue;
+        if (length > config.surface_gap || length == 0.0) continue;
         // A segment running almost along the beams is a depth jump (a chair
         // leg in front of a wall), not a surface: joining it would draw a
         // phantom wall towards the robot.
         const Eigen::Vector2d beam = (0.5 * (hits[i] + hits[i - 1]) - origin).normalized();
-        if (std::abs(beam.dot(segment) / length) > config_.surface_max_cos) continue;
+        if (std::abs(beam.dot(segment) / length) > config.surface_max_cos) continue;
         const CellIndex end = grid.cell_of(hits[i]);
         traverse_ray(hits[i - 1], hits[i], grid.resolution(), [&](CellIndex c) {
           if (c == end) return;
-          DsMass& m = grid.mutable_at(c);
-          m = ev.update(m, between_hits);
+          each(level, c, [&](const DsMass& m) { return ev.update(m, between_hits); });
         });
       }
     }
     for (const Eigen::Vector2d& h : hits) {
       if (!splat) {
-        DsMass& m = grid.mutable_at(grid.cell_of(h));
-        m = ev.update(m, hit);
+        each(level, grid.cell_of(h), [&](const DsMass& m) { return ev.update(m, hit); });
         continue;
       }
       // Spread the hit over the four nearest cells with bilinear weights. The
@@ -89,16 +106,14 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
       // through both is a tent centred exactly on the point: coarse cells no
       // longer pull scans towards their centres (a bias of up to half a cell,
       // the same for every wall of one orientation).
-      const double gx = h.x() / grid.resolution() - 0.5, gy = h.y() / grid.resolution() - 0.5;
-      const double fx = std::floor(gx), fy = std::floor(gy);
-      const auto x0 = static_cast<std::int32_t>(fx), y0 = static_cast<std::int32_t>(fy);
-      const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
-      const float weights[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
-      const CellIndex cells[4] = {{x0, y0}, {x0 + 1, y0}, {x0, y0 + 1}, {x0 + 1, y0 + 1}};
+      const BilinearPoint b = bilinear_point(h.x(), h.y(), 1.0 / grid.resolution());
+      const std::array<float, 4> weights = b.weights();
+      const CellIndex c = b.corner;
+      const CellIndex cells[4] = {c, {c.x + 1, c.y}, {c.x, c.y + 1}, {c.x + 1, c.y + 1}};
       for (int k = 0; k < 4; ++k) {
         if (weights[k] <= 0.0f) continue;
-        DsMass& m = grid.mutable_at(cells[k]);
-        m = ev.update(m, DsMass{hit.occupied * weights[k], 0.0f});
+        const DsMass share{hit.occupied * weights[k], 0.0f};
+        each(level, cells[k], [&](const DsMass& m) { return ev.update(m, share); });
       }
     }
   }

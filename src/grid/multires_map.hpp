@@ -4,6 +4,7 @@
 // The finest level is the map users see; the coarser ones give the matcher a
 // wide, smooth basin so that it can recover from a poor prior before it
 // refines on the fine level (the multi-resolution idea of Hector SLAM).
+#include <span>
 #include <vector>
 
 #include "geometry/pose2.hpp"
@@ -64,6 +65,11 @@ class MultiResMap {
   // hit, then occupied at the hit. `points` are in the robot base frame, as
   // produced by scan_to_points(); `laser_in_base` is the mounting offset.
   void insert_scan(const Pose2& robot_pose, const Pose2& laser_in_base, const std::vector<ScanPoint>& points);
+  // The same scan into several maps of this one's configuration whose cells
+  // coincide (local SLAM's local map and current submap): each gets exactly
+  // what insert_scan would give it, the rays are traced once.
+  static void insert_scan(std::span<MultiResMap* const> maps, const Pose2& robot_pose, const Pose2& laser_in_base,
+                          const std::vector<ScanPoint>& points);
 
   std::size_t cells_allocated() const;
   std::size_t memory_bytes() const;

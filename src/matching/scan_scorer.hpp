@@ -9,38 +9,21 @@
 
 #include "geometry/pose2.hpp"
 #include "grid/ds_grid.hpp"
+#include "grid/sampling.hpp"
 #include "sensor/scan_points.hpp"
 
 namespace dsswarm {
-
-// What a cell is worth to a scan point: the belief that it is occupied plus a
-// share `unknown_value` of its unknown mass. With 0 only evidence of an
-// obstacle counts, so a scan is not rewarded for drifting into unexplored
-// space; with 0.5 this is the pignistic occupancy used for display.
-// Cell value at a world point, bilinear between cell centres.
-inline float interpolated_occupancy(const DsGrid& grid, double wx, double wy, float unknown_value) {
-  const double inv = 1.0 / grid.resolution();
-  const double gx = wx * inv - 0.5, gy = wy * inv - 0.5;
-  const double fx = std::floor(gx), fy = std::floor(gy);
-  const auto x0 = static_cast<std::int32_t>(fx), y0 = static_cast<std::int32_t>(fy);
-  const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
-  DsMass q[4];
-  grid.quad({x0, y0}, q);
-  auto value = [unknown_value](const DsMass& m) { return m.occupied + unknown_value * m.unknown(); };
-  const float o00 = value(q[0]), o10 = value(q[1]), o01 = value(q[2]), o11 = value(q[3]);
-  return (1 - ay) * ((1 - ax) * o00 + ax * o10) + ay * ((1 - ax) * o01 + ax * o11);
-}
 
 // Weighted mean occupancy under `points` placed at `pose`; uses every
 // `stride`-th point (coarse levels need fewer points).
 inline double score_pose(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose,
                          std::size_t stride = 1, float unknown_value = 0.0f) {
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const PointTransform to_world(pose);
   double sum = 0.0, weights = 0.0;
   for (std::size_t i = 0; i < points.size(); i += stride) {
     const ScanPoint& p = points[i];
-    const double wx = pose.x + c * p.x - s * p.y, wy = pose.y + s * p.x + c * p.y;
-    sum += p.weight * interpolated_occupancy(grid, wx, wy, unknown_value);
+    const Eigen::Vector2d w = to_world(p.x, p.y);
+    sum += p.weight * interpolated_occupancy(grid, w.x(), w.y(), unknown_value);
     weights += p.weight;
   }
   return weights > 0.0 ? sum / weights : 0.0;
@@ -79,9 +62,10 @@ struct MatchQuality {
 
 inline MatchQuality match_quality(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
   constexpr float kKnown = 0.1f;  // evidence mass that makes a cell "seen"
+  const PointTransform to_world(pose);
   double total = 0.0, known = 0.0, inliers = 0.0;
   for (const ScanPoint& p : points) {
-    const CellIndex c = grid.cell_of(pose * Eigen::Vector2d(p.x, p.y));
+    const CellIndex c = grid.cell_of(to_world(p.x, p.y));
     const bool obstacle = near_obstacle(grid, c);
     const bool seen =
         obstacle || in_neighbourhood(grid, c, [](const DsMass& m) { return m.occupied + m.free >= kKnown; });

@@ -28,4 +28,7 @@ struct PointWeightConfig {
 
 std::vector<ScanPoint> scan_to_points(const LaserScan& scan, const PointWeightConfig& config = {});
 
+// The weight of a point at (x, y) in the robot base frame.
+double point_weight(double x, double y, const PointWeightConfig& config);
+
 }  // namespace dsswarm

@@ -2,12 +2,24 @@
 // Single-robot SLAM pipeline: feed scans (with odometry when the robot has
 // it), get a pose per scan; the map is readable at any time.
 //
-//   scan ─► points ─► prior (last pose ⊕ odometry increment) ─► Monte-Carlo
-//   matcher against the map ─► pose ─► insert scan into the map
+//   local SLAM, per scan, in its own local frame:
+//     scan ─► filter ─► standing still? ─► points ─► prior (motion predictor)
+//          ─► Monte-Carlo matcher against the local map (previous ⊕ current
+//             submap) ─► match verifier (recovery search when it fails)
+//          ─► pose ─► insert into the current submap
+//   global SLAM, in background rounds (loop_closer.hpp):
+//     new nodes ─► loop-closure search in finished submaps nearby ─► verify
+//          ─► pose graph (Ceres) ─► global poses; the global map is the
+//             Dempster combination of the submaps at their optimized poses
 //
-// No I/O happens here: readers and writers live in src/io.
+// The pipeline owns one small module per job (motion_predictor,
+// standing_still, match_verifier, recovery, gap_reviser, submaps,
+// loop_closer). No I/O happens here: readers and writers live in src/io,
+// threads in src/runtime.
+#include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "filter/scan_filter.hpp"
 #include "geometry/pose2.hpp"
@@ -15,6 +27,14 @@
 #include "matching/monte_carlo_matcher.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/scan_points.hpp"
+#include "slam/executor.hpp"
+#include "slam/gap_reviser.hpp"
+#include "slam/loop_closer.hpp"
+#include "slam/match_verifier.hpp"
+#include "slam/motion_predictor.hpp"
+#include "slam/recovery.hpp"
+#include "slam/standing_still.hpp"
+#include "slam/submaps.hpp"
 
 namespace dsswarm {
 
@@ -35,37 +55,21 @@ struct SlamConfig {
   bool use_odometry = true;    // false: constant-velocity prior from the last two poses
   std::uint64_t seed = 1;      // the matcher's random source: same seed, same result
   int min_points = 20;         // scans with fewer valid points are not matched (pose = prior)
-  // Insert a matched scan into the map only when the robot has moved this much
-  // since the last insertion: a robot standing still would otherwise pile
-  // evidence from one viewpoint, making its noise look certain.
-  // When the odometry prediction and the constant-velocity prediction differ
-  // by more than this, the matcher searches from both (odometry glitches).
-  double odometry_doubt_xy = 0.2;       // m
-  double odometry_doubt_theta = 0.15;   // rad
-  // Match verification (see match_quality): a match is rejected when at least
-  // `verify_min_known` of its points land on known cells and its inlier ratio
-  // is below max(verify_min_inliers, verify_relative × the running average of
-  // accepted matches); never more than `verify_max_consecutive` in a row.
-  double verify_min_known = 0.3;
-  double verify_min_inliers = 0.3;
-  double verify_relative = 0.75;
-  int verify_max_consecutive = 10;
+  MotionConfig motion;
+  VerifyConfig verify;
   // A robot whose odometry has not changed for this many scans (after it
-  // first moved) is standing still: its pose is held and its scans are
-  // neither matched nor inserted until the odometry changes again (see
-  // process). Odometry that stalls while the robot moves (real logs do)
-  // freezes for fewer scans. Needs use_odometry.
-  int pause_after_still_scans = 20;     // 0: never pause
-  double insert_min_travel = 0.0;       // m
-  double insert_min_rotation = 0.0;     // rad
+  // first moved) is standing still (see standing_still.hpp). Needs use_odometry.
+  int pause_after_still_scans = 20;  // 0: never pause
+  InsertConfig insert;
+  // Submaps are what loop closure works on, so they are used only with it
+  // (loop_closure.enabled, off by default): without it one map, which local
+  // SLAM matches better against on revisits (figures in docs/loop_closure.md).
+  SubmapConfig submaps{.max_scans = 150, .max_travel = 15.0};
+  LoopClosureConfig loop_closure;
 
+  // `submaps` with loop closure on; one map (no submaps) without it.
+  SubmapConfig active_submaps() const;
   void validate() const;
-};
-
-// A better pose for an earlier scan, found after the fact.
-struct PoseRevision {
-  std::size_t index = 0;  // the scan's position in process() order, from 0
-  Pose2 pose;
 };
 
 struct SlamStep {
@@ -82,88 +86,98 @@ struct SlamStep {
   std::vector<PoseRevision> revised;
 };
 
+// What a given map is for.
+// `config` with loop closure on (submaps, loop-closure rounds, pose graph).
+SlamConfig with_loop_closure(SlamConfig config = {});
+
+enum class MapUse {
+  extend,    // keep mapping in it (new evidence in new submaps)
+  localize,  // localize in it; it never changes
+};
+
 class Slam {
  public:
-  explicit Slam(const SlamConfig& config = {});
-  // Continues mapping in `initial` (a saved map, or evidence received from
-  // other robots): the first scan is matched against it from `start` (a wide
-  // search) instead of founding the map. `initial` counts as own evidence.
-  Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start);
+  // `background` runs loop closing (not owned; nullptr: on the calling thread).
+  explicit Slam(const SlamConfig& config = {}, Executor* background = nullptr);
+  // Starts in `initial` (a saved map, or evidence received from other
+  // robots): the first scan is matched against it from `start` (a wide
+  // search) instead of founding the map. Extending it, `initial` counts as
+  // own evidence and stays fixed as the first submap.
+  Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use = MapUse::extend,
+       Executor* background = nullptr);
 
   SlamStep process(const LaserScan& scan);
+  // Waits for background work and runs a last loop-closing round, so that
+  // trajectory() and map() reflect every scan. Processing may go on after.
+  void finish();
 
-  // The map the robot localizes in: its own evidence combined with whatever
-  // it received from others (see replace_working_map).
-  const MultiResMap& map() const { return map_; }
+  // The map the robot localizes in, in the global frame: its own evidence
+  // (the submaps at their optimized poses) or, once the swarm installed one,
+  // own ⊕ foreign (see replace_working_map).
+  const MultiResMap& map() const;
   // Only the evidence of this robot's own scans: what it shares with others,
   // so that nothing received from a third robot is ever passed on as its own.
-  const MultiResMap& own_map() const { return own_map_ ? *own_map_ : map_; }
-  // Installs a richer map to localize in (own evidence ⊕ foreign evidence,
-  // built by the swarm layer from own_map()). From then on every insertion
-  // goes into both maps; Dempster's rule is associative and commutative, so
-  // the working map stays exactly own ⊕ foreign.
+  const MultiResMap& own_map() const;
+  // Installs a richer map (own evidence ⊕ foreign evidence, built by the
+  // swarm layer from own_map()) as map(); from then on every insertion goes
+  // into it too (Dempster's rule is associative and commutative, so it stays
+  // own ⊕ foreign). With one map (submaps.max_scans = max_travel = 0) the
+  // robot also localizes in it, as before submaps; with submaps it localizes
+  // in its own recent submaps.
   void replace_working_map(MultiResMap working);
   // How many scans this robot has put into its own map (a snapshot's version).
-  std::size_t scans_inserted() const { return inserted_; }
-  const Pose2& pose() const { return pose_; }
+  std::size_t scans_inserted() const { return submaps_.scans_inserted(); }
+  // The robot's pose now, in the global frame.
+  Pose2 pose() const { return closer_.to_global(motion_.pose()); }
+  // Every scan's pose in process() order: optimized (global frame), and as
+  // local SLAM estimated it (its local frame, before any loop closure).
+  std::vector<Pose2> trajectory() const { return closer_.trajectory(); }
+  std::vector<Pose2> local_trajectory() const { return closer_.local_trajectory(); }
+  const Submaps& submaps() const { return submaps_; }
+  const LoopCloser& loop_closer() const { return closer_; }
   std::size_t scans_processed() const { return processed_; }
   std::size_t scans_matched() const { return matched_; }
   std::size_t matches_rejected() const { return rejected_; }
-  std::size_t recoveries() const { return recoveries_; }
+  std::size_t recoveries() const { return recovery_.searches(); }
   std::size_t scans_dropped() const { return filter_.dropped(); }
   std::size_t scans_held() const { return held_; }  // standing still (SlamStep::still)
   double filter_seconds() const { return filter_seconds_; }
   const SlamConfig& config() const { return config_; }
 
  private:
-  Pose2 predict(const LaserScan& scan) const;
-  // Matches `points` from step.prior (and alternatives), verifies the match and
-  // fills step.pose / matched / score; a rejected match leaves the prior.
+  // Whether the scan filter keeps the scan (timed: its cost is part of a scan's price).
+  bool filter_keeps(const LaserScan& scan);
+  // Matches `points` from step.prior (and alternatives), verifies the match
+  // (with a recovery search when it fails) and fills step.pose / matched /
+  // score; a rejected match leaves the prior. Poses in the local frame.
   void match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step);
-  // Bookkeeping after every scan: odometry anchor and constant-velocity state.
-  void advance(const LaserScan& scan, const Pose2& pose);
-  bool odometry_stale(const LaserScan& scan) const;
-  // Counts scans with unchanged odometry; true once the robot stands still.
-  bool note_standing_still(const LaserScan& scan);
-  // Fills step.revised for the dropped scans since the last kept one.
-  void revise_gap(SlamStep& step) const;
-  // A wider, costlier search for scans whose normal match fails verification.
-  static MatcherConfig recovery_config(const MatcherConfig& normal);
+  // The first scan in a given map: where in it are we? Only the start is known, roughly.
+  void locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step);
+  const MultiResMap& matching_map() const;
+  // Records the scan (local poses in `step`), inserts it, and turns the step's poses global.
+  SlamStep finish_step(SlamStep step, const LaserScan& scan, const std::vector<ScanPoint>& points, bool insert);
 
   SlamConfig config_;
-  void insert(const Pose2& pose, const LaserScan& scan, const std::vector<ScanPoint>& points);
-
-  MultiResMap map_;                      // working map: own ⊕ foreign evidence
-  std::optional<MultiResMap> own_map_;   // set once the working map holds foreign evidence
-  bool has_initial_map_ = false;         // first scan is matched, not founding
-  std::size_t inserted_ = 0;
-  MonteCarloMatcher matcher_;
-  MonteCarloMatcher recovery_matcher_;
   ScanFilter filter_;
+  MotionPredictor motion_;
+  StandingStill standing_still_;
+  MonteCarloMatcher matcher_;
+  MatchVerifier verifier_;
+  Recovery recovery_;
+  GapReviser gaps_;
+  Submaps submaps_;
+  LoopCloser closer_;
+  std::optional<MultiResMap> working_;  // own ⊕ foreign, once the swarm installed it
+  bool has_initial_map_ = false;        // first scan is matched, not founding
+  bool localize_only_ = false;
   double filter_seconds_ = 0.0;
-  Pose2 pose_;
-  std::optional<Pose2> previous_pose_;  // for the constant-velocity prior
-  // Last odometry reading that moved, and our pose at that scan. Increments
-  // are taken from this anchor, so odometry that freezes for a few scans and
-  // then jumps (real logs do this) still predicts the whole motion.
-  std::optional<Pose2> anchor_odometry_;
-  Pose2 anchor_pose_;
-  bool odometry_moving_ = false;  // did the last fresh odometry increment move?
-  // Dropped scans since the last kept one (index, predicted pose), and the
-  // pose of that kept scan, where their prediction started.
-  std::vector<PoseRevision> gap_;
-  Pose2 gap_start_;
-  std::optional<Pose2> last_insert_pose_;
-  std::optional<Pose2> last_odometry_;  // the previous scan's reading
-  int still_scans_ = 0;                 // consecutive scans with the same odometry reading
-  bool has_moved_ = false;              // has the odometry ever changed?
   std::size_t processed_ = 0;
   std::size_t matched_ = 0;
   std::size_t rejected_ = 0;
   std::size_t held_ = 0;
-  std::size_t recoveries_ = 0;
-  int consecutive_rejections_ = 0;
-  double inlier_average_ = 0.0;  // running average inlier ratio of accepted matches
+  // own_map() composed on demand, and what it was composed from.
+  mutable std::optional<MultiResMap> global_;
+  mutable std::pair<std::size_t, std::uint64_t> global_version_{0, 0};
 };
 
 }  // namespace dsswarm

@@ -87,6 +87,27 @@ TEST(Slam, CorrectsDriftingOdometry) {
   EXPECT_EQ(slam.scans_matched(), d.scans.size() - 1);
 }
 
+// Loop closure is off by default: one map, as before submaps; on, the same
+// drive is cut into submaps and searched for closures.
+TEST(Slam, SubmapsOnlyWithLoopClosure) {
+  const Drive d = drive();
+  SlamConfig on = with_loop_closure();
+  on.submaps.max_scans = 10;
+  SlamConfig off = on;
+  off.loop_closure.enabled = false;
+  Slam with(on), without(off);
+  for (const auto& s : d.scans) {
+    with.process(s);
+    without.process(s);
+  }
+  with.finish();
+  without.finish();
+  EXPECT_TRUE(without.submaps().finished().empty());
+  EXPECT_EQ(without.loop_closer().stats().searches, 0u);
+  EXPECT_GT(with.submaps().finished().size(), 2u);
+  EXPECT_FALSE(SlamConfig{}.loop_closure.enabled);
+}
+
 TEST(Slam, WorksWithoutOdometry) {
   Drive d = drive();
   for (auto& s : d.scans) s.odometry.reset();

@@ -1,77 +1,8 @@
 #include "swarm/map_merge.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-
-#include "common/errors.hpp"
 
 namespace dsswarm {
-namespace {
-
-// Masses of `grid` at a world point, bilinear between the four nearest cell centres.
-DsMass sample(const DsGrid& grid, double wx, double wy) {
-  const double inv = 1.0 / grid.resolution();
-  const double gx = wx * inv - 0.5, gy = wy * inv - 0.5;
-  const double fx = std::floor(gx), fy = std::floor(gy);
-  DsMass q[4];
-  grid.quad({static_cast<std::int32_t>(fx), static_cast<std::int32_t>(fy)}, q);
-  const float ax = static_cast<float>(gx - fx), ay = static_cast<float>(gy - fy);
-  const float w[4] = {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay};
-  DsMass m;
-  for (int k = 0; k < 4; ++k) {
-    m.occupied += w[k] * q[k].occupied;
-    m.free += w[k] * q[k].free;
-  }
-  m.occupied = std::clamp(m.occupied, 0.0f, 1.0f);
-  m.free = std::clamp(m.free, 0.0f, 1.0f - m.occupied);
-  return m;
-}
-
-void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_target, const EvidenceModel& evidence) {
-  CellIndex smin, smax;
-  source.bounds(smin, smax);
-  if (smin == smax) return;
-  // The source's extent, placed in the target frame, bounds the cells to visit.
-  const double sr = source.resolution();
-  double lo_x = std::numeric_limits<double>::max(), lo_y = lo_x, hi_x = -lo_x, hi_y = -lo_x;
-  for (int corner = 0; corner < 4; ++corner) {
-    const Eigen::Vector2d p((corner & 1 ? smax.x : smin.x) * sr, (corner & 2 ? smax.y : smin.y) * sr);
-    const Eigen::Vector2d q = source_in_target * p;
-    lo_x = std::min(lo_x, q.x());
-    lo_y = std::min(lo_y, q.y());
-    hi_x = std::max(hi_x, q.x());
-    hi_y = std::max(hi_y, q.y());
-  }
-  const CellIndex tmin = target.cell_of({lo_x, lo_y}), tmax = target.cell_of({hi_x, hi_y});
-  const Pose2 target_in_source = source_in_target.inverse();
-  const double c = std::cos(target_in_source.theta), s = std::sin(target_in_source.theta);
-  const double tr = target.resolution();
-  constexpr float kNothing = 1e-4f;  // below this the source knows nothing here
-  for (std::int32_t y = tmin.y; y <= tmax.y; ++y) {
-    const double wy = (y + 0.5) * tr;
-    for (std::int32_t x = tmin.x; x <= tmax.x; ++x) {
-      const double wx = (x + 0.5) * tr;
-      const double sx = target_in_source.x + c * wx - s * wy, sy = target_in_source.y + s * wx + c * wy;
-      const DsMass m = sample(source, sx, sy);
-      if (m.occupied + m.free < kNothing) continue;
-      DsMass& cell = target.mutable_at({x, y});
-      cell = evidence.update(cell, m);
-    }
-  }
-}
-
-}  // namespace
-
-void combine_into(MultiResMap& target, const MultiResMap& source, const Pose2& source_in_target) {
-  if (source.levels() != target.levels() || source.config().resolution != target.config().resolution)
-    throw ConfigError("cannot merge maps of different resolution or levels (" +
-                      std::to_string(source.config().resolution) + " m × " + std::to_string(source.levels()) +
-                      " vs " + std::to_string(target.config().resolution) + " m × " +
-                      std::to_string(target.levels()) + ")");
-  for (int level = 0; level < target.levels(); ++level)
-    combine_level(target.mutable_level(level), source.level(level), source_in_target, target.config().evidence);
-}
 
 MultiResMap compose_working_map(const MultiResMap& own, const std::vector<MapLayer>& foreign) {
   std::vector<const MapLayer*> ordered;

@@ -42,12 +42,12 @@ namespace {
 // nothing, which the plain score (occupied only) cannot tell from unexplored.
 double evidence_agreement(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
   if (points.empty()) return 0.0;
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const PointTransform to_world(pose);
   double sum = 0.0;
   for (const ScanPoint& p : points) {
-    const double wx = pose.x + c * p.x - s * p.y, wy = pose.y + s * p.x + c * p.y;
+    const Eigen::Vector2d w = to_world(p.x, p.y);
     // occupied − free = 2 × occupancy − 1 with unknown counting half.
-    sum += 2.0 * interpolated_occupancy(grid, wx, wy, 0.5f) - 1.0;
+    sum += 2.0 * interpolated_occupancy(grid, w.x(), w.y(), 0.5f) - 1.0;
   }
   return sum / static_cast<double>(points.size());
 }
@@ -72,9 +72,8 @@ std::vector<Coarse> exhaustive_search(const DsGrid& grid, const std::vector<Scan
   std::vector<Eigen::Vector2d> rotated(subset.size());
   for (int h = 0; h < headings; ++h) {
     const double theta = -std::numbers::pi + 2.0 * std::numbers::pi * h / headings;
-    const double c = std::cos(theta), s = std::sin(theta);
-    for (std::size_t i = 0; i < subset.size(); ++i)
-      rotated[i] = {c * subset[i].x - s * subset[i].y, s * subset[i].x + c * subset[i].y};
+    const PointTransform rotate = PointTransform::rotation(theta);
+    for (std::size_t i = 0; i < subset.size(); ++i) rotated[i] = rotate(subset[i].x, subset[i].y);
     for (int iy = -steps_xy; iy <= steps_xy; ++iy)
       for (int ix = -steps_xy; ix <= steps_xy; ++ix) {
         if (ix * ix + iy * iy > steps_xy * steps_xy) continue;
@@ -102,40 +101,6 @@ std::vector<Pose2> distinct_best(std::vector<Coarse> all, int count, const Relat
 }
 
 }  // namespace
-
-double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose) {
-  constexpr float kSeenFree = 0.08f;     // two beams' worth of free evidence
-  constexpr double kApproach = 0.15;     // m before the hit: beyond the surface's own blur
-  // A grazing beam is still inside its wall's cells 15 cm before its hit, in
-  // cells the map has never seen free even when the placement is right. The
-  // approach point steps further back along the beam until it leaves the
-  // obstacle; a hit still inside one this far back does not vote.
-  constexpr double kMaxStepBack = 0.6;   // m along the beam
-  const double step = grid.resolution();
-  const Eigen::Vector2d origin = pose.translation();
-  double inliers = 0.0, same_side = 0.0;
-  for (const ScanPoint& p : points) {
-    const Eigen::Vector2d hit = pose * Eigen::Vector2d(p.x, p.y);
-    if (!near_obstacle(grid, grid.cell_of(hit))) continue;
-    const Eigen::Vector2d to_hit = hit - origin;
-    const double range = to_hit.norm();
-    std::optional<CellIndex> before;
-    for (double back = kApproach; back <= std::min(kMaxStepBack, range); back += step) {
-      const CellIndex c = grid.cell_of(hit - to_hit * (back / range));
-      if (!is_obstacle(grid.at(c))) {
-        before = c;
-        break;
-      }
-    }
-    if (!before) continue;
-    inliers += p.weight;
-    // Far from every viewpoint the beams that crossed the space before a wall
-    // are sparser than the cells: seen free within a cell of the approach.
-    if (in_neighbourhood(grid, *before, [](const DsMass& m) { return m.free >= kSeenFree && m.free > m.occupied; }))
-      same_side += p.weight;
-  }
-  return inliers > 0.0 ? same_side / inliers : 0.0;
-}
 
 MatchResult refine_placement(const MultiResMap& map, const std::vector<ScanPoint>& points,
                        const std::vector<ScanPoint>& surroundings, const Pose2& start, const RelativePoseConfig& config,

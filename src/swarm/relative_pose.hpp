@@ -23,6 +23,7 @@
 
 #include "grid/multires_map.hpp"
 #include "matching/monte_carlo_matcher.hpp"
+#include "matching/same_side.hpp"
 #include "sensor/scan_points.hpp"
 
 namespace dsswarm {
@@ -95,9 +96,6 @@ MatchResult refine_placement(const MultiResMap& map, const std::vector<ScanPoint
 // evenly to at most `max_points`.
 std::vector<ScanPoint> surroundings_points(const MultiResMap& map, const Pose2& robot_pose, double radius,
                                            int max_points);
-
-// The same_side_ratio of `points` (robot base frame) placed at `pose`.
-double same_side_ratio(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose);
 
 // Whether two placements are distinct modes under `config`.
 bool distinct_modes(const Pose2& a, const Pose2& b, const RelativePoseConfig& config);

@@ -1,0 +1,122 @@
+#include "grid/frozen_map.hpp"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "common/errors.hpp"
+
+namespace dsswarm {
+namespace {
+
+constexpr int kCells = FrozenMap::kBlock * FrozenMap::kBlock;
+constexpr int kZstdLevel = 1;  // fast: a submap is frozen while the robot drives on
+
+std::uint8_t encode(float m) {
+  return static_cast<std::uint8_t>(std::lround(255.0f * std::sqrt(std::clamp(m, 0.0f, 1.0f))));
+}
+float decode(std::uint8_t q) {
+  const float r = static_cast<float>(q) / 255.0f;
+  return r * r;
+}
+
+// One level's evidence as [origins][occupied bytes][free bytes], blocks with evidence only.
+std::vector<std::uint8_t> pack(const DsGrid& grid, std::size_t& blocks) {
+  constexpr int per_tile = DsGrid::kTileSize / FrozenMap::kBlock;
+  std::vector<CellIndex> origins;
+  std::vector<std::uint8_t> occupied, free;
+  std::uint8_t o[kCells], f[kCells];
+  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    for (int by = 0; by < per_tile; ++by)
+      for (int bx = 0; bx < per_tile; ++bx) {
+        bool any = false;
+        for (int y = 0; y < FrozenMap::kBlock; ++y)
+          for (int x = 0; x < FrozenMap::kBlock; ++x) {
+            const DsMass& m = cells[(by * FrozenMap::kBlock + y) * DsGrid::kTileSize + bx * FrozenMap::kBlock + x];
+            const int k = y * FrozenMap::kBlock + x;
+            o[k] = encode(m.occupied);
+            f[k] = encode(m.free);
+            any = any || o[k] != 0 || f[k] != 0;
+          }
+        if (!any) continue;
+        origins.push_back({origin.x + bx * FrozenMap::kBlock, origin.y + by * FrozenMap::kBlock});
+        occupied.insert(occupied.end(), o, o + kCells);
+        free.insert(free.end(), f, f + kCells);
+      }
+  });
+  blocks = origins.size();
+  std::vector<std::uint8_t> raw(origins.size() * sizeof(CellIndex));
+  if (!raw.empty()) std::memcpy(raw.data(), origins.data(), raw.size());
+  raw.insert(raw.end(), occupied.begin(), occupied.end());
+  raw.insert(raw.end(), free.begin(), free.end());
+  return raw;
+}
+
+}  // namespace
+
+FrozenMap::FrozenMap(const MultiResMap& map) {
+  static_assert(DsGrid::kTileSize % kBlock == 0);
+  for (int l = 0; l < map.levels(); ++l) {
+    Level level;
+    const std::vector<std::uint8_t> raw = pack(map.level(l), level.blocks);
+    level.raw_bytes = raw.size();
+    level.compressed.resize(ZSTD_compressBound(raw.size()));
+    const std::size_t n = ZSTD_compress(level.compressed.data(), level.compressed.size(), raw.data(), raw.size(), kZstdLevel);
+    if (ZSTD_isError(n)) throw std::runtime_error(std::string("FrozenMap: zstd: ") + ZSTD_getErrorName(n));
+    level.compressed.resize(n);
+    level.compressed.shrink_to_fit();
+    levels_.push_back(std::move(level));
+  }
+}
+
+MultiResMap FrozenMap::thaw(const MapConfig& config) const { return thaw(config, nullptr, nullptr); }
+
+MultiResMap FrozenMap::thaw(const MapConfig& config, CellIndex region_min, CellIndex region_max) const {
+  return thaw(config, &region_min, &region_max);
+}
+
+MultiResMap FrozenMap::thaw(const MapConfig& config, const CellIndex* region_min, const CellIndex* region_max) const {
+  MultiResMap map(config);
+  if (map.levels() > static_cast<int>(levels_.size()))
+    throw ConfigError("FrozenMap::thaw: the configuration has more levels than the frozen map");
+  std::vector<std::uint8_t> raw;
+  for (int l = 0; l < map.levels(); ++l) {
+    const Level& level = levels_[static_cast<std::size_t>(l)];
+    raw.resize(level.raw_bytes);
+    const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), level.compressed.data(), level.compressed.size());
+    if (ZSTD_isError(n) || n != raw.size()) throw std::runtime_error("FrozenMap: corrupt compressed level");
+    std::vector<CellIndex> origins(level.blocks);
+    if (!origins.empty()) std::memcpy(origins.data(), raw.data(), origins.size() * sizeof(CellIndex));
+    const std::uint8_t* occupied = raw.data() + origins.size() * sizeof(CellIndex);
+    const std::uint8_t* free = occupied + origins.size() * kCells;
+    DsGrid& grid = map.mutable_level(l);
+    const std::int32_t scale = 1 << l;  // level l cells are 2^l finest cells wide
+    for (std::size_t b = 0; b < origins.size(); ++b) {
+      const CellIndex lo{origins[b].x * scale, origins[b].y * scale};
+      const CellIndex hi{(origins[b].x + kBlock) * scale, (origins[b].y + kBlock) * scale};
+      if (region_min && (hi.x <= region_min->x || hi.y <= region_min->y || lo.x >= region_max->x ||
+                         lo.y >= region_max->y))
+        continue;
+      for (int k = 0; k < kCells; ++k) {
+        const std::uint8_t qo = occupied[b * kCells + static_cast<std::size_t>(k)];
+        const std::uint8_t qf = free[b * kCells + static_cast<std::size_t>(k)];
+        if (qo == 0 && qf == 0) continue;
+        const float o = decode(qo);
+        grid.mutable_at({origins[b].x + k % kBlock, origins[b].y + k / kBlock}) = {o, std::min(decode(qf), 1.0f - o)};
+      }
+    }
+  }
+  return map;
+}
+
+std::size_t FrozenMap::memory_bytes() const {
+  std::size_t n = levels_.capacity() * sizeof(Level);
+  for (const Level& l : levels_) n += l.compressed.capacity();
+  return n;
+}
+
+}  // namespace dsswarm

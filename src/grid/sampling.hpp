@@ -1,0 +1,68 @@
+#pragma once
+// Bilinear interpolation between cell centres, the one implementation shared
+// by everything that reads a grid between its cells (the scorer reading
+// occupancy, the map merge reading masses) or writes a point over the four
+// cells around it (coarse-level hits). Reading through the same weights that
+// writing spreads with makes a hit a tent centred exactly on its point.
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "grid/ds_grid.hpp"
+
+namespace dsswarm {
+
+// A world point's place among the four cell centres around it: the 2×2 block
+// whose lower-left cell is `corner` (in DsGrid::quad order) and the point's
+// fractional offsets from that cell's centre, in [0, 1).
+struct BilinearPoint {
+  CellIndex corner;
+  float ax = 0.0f;
+  float ay = 0.0f;
+
+  // Each cell's share of the point, in DsGrid::quad order; they sum to 1.
+  std::array<float, 4> weights() const { return {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay}; }
+  // The value at the point from the block's four values (quad order).
+  float interpolate(float v00, float v10, float v01, float v11) const {
+    return (1 - ay) * ((1 - ax) * v00 + ax * v10) + ay * ((1 - ax) * v01 + ax * v11);
+  }
+};
+
+inline BilinearPoint bilinear_point(double wx, double wy, double inv_resolution) {
+  const double gx = wx * inv_resolution - 0.5, gy = wy * inv_resolution - 0.5;
+  const double fx = std::floor(gx), fy = std::floor(gy);
+  return {{static_cast<std::int32_t>(fx), static_cast<std::int32_t>(fy)}, static_cast<float>(gx - fx),
+          static_cast<float>(gy - fy)};
+}
+
+// What a cell is worth to a scan point: the belief that it is occupied plus a
+// share `unknown_value` of its unknown mass. With 0 only evidence of an
+// obstacle counts, so a scan is not rewarded for drifting into unexplored
+// space; with 0.5 this is the pignistic occupancy used for display.
+// The value at a world point, bilinear between cell centres.
+inline float interpolated_occupancy(const DsGrid& grid, double wx, double wy, float unknown_value) {
+  const BilinearPoint b = bilinear_point(wx, wy, 1.0 / grid.resolution());
+  DsMass q[4];
+  grid.quad(b.corner, q);
+  auto value = [unknown_value](const DsMass& m) { return m.occupied + unknown_value * m.unknown(); };
+  return b.interpolate(value(q[0]), value(q[1]), value(q[2]), value(q[3]));
+}
+
+// The masses of `grid` at a world point, bilinear between cell centres: a
+// convex blend of valid masses, clamped against rounding.
+inline DsMass interpolated_masses(const DsGrid& grid, double wx, double wy) {
+  const BilinearPoint b = bilinear_point(wx, wy, 1.0 / grid.resolution());
+  DsMass q[4];
+  grid.quad(b.corner, q);
+  const std::array<float, 4> w = b.weights();
+  DsMass m;
+  for (int k = 0; k < 4; ++k) {
+    m.occupied += w[k] * q[k].occupied;
+    m.free += w[k] * q[k].free;
+  }
+  m.occupied = std::clamp(m.occupied, 0.0f, 1.0f);
+  m.free = std::clamp(m.free, 0.0f, 1.0f - m.occupied);
+  return m;
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,222 @@
+#include "matching/branch_and_bound_matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace dsswarm {
+namespace {
+// Values are occupied − free in [-1, 1] stored as bytes: 0 ↔ -1, 255 ↔ 1.
+constexpr float kZero = 127.5f;
+constexpr std::uint8_t kUnknown = BranchAndBoundMatcher::kUnknownByte;
+double to_score(double mean_byte) { return mean_byte / kZero - 1.0; }
+
+// out[i] = max(in[i - s], in[i]) for i in [0, n + s), values outside [0, n) unknown.
+void max_pairs(const std::uint8_t* in, std::int32_t n, std::int32_t s, std::uint8_t* out) {
+  const std::int32_t both = std::min(n, s);  // [0, both): only in[i] is inside
+  for (std::int32_t i = 0; i < both; ++i) out[i] = std::max(kUnknown, in[i]);
+  for (std::int32_t i = both; i < s; ++i) out[i] = kUnknown;  // neither (n < s)
+  for (std::int32_t i = s; i < n; ++i) out[i] = std::max(in[i - s], in[i]);
+  for (std::int32_t i = std::max(n, s); i < n + s; ++i) out[i] = std::max(in[i - s], kUnknown);
+}
+
+// out[i] = max(a[i], b[i]), a missing row reading as unknown.
+void max_rows(const std::uint8_t* a, const std::uint8_t* b, std::int32_t n, std::uint8_t* out) {
+  for (std::int32_t i = 0; i < n; ++i) out[i] = std::max(a ? a[i] : kUnknown, b ? b[i] : kUnknown);
+}
+}  // namespace
+
+BranchAndBoundMatcher::Level BranchAndBoundMatcher::doubled(const Level& prev, std::int32_t s) {
+  // The block of 2s cells starting at a cell is the four blocks of s starting
+  // at it and s cells further along x, y and both: a maximum along x, then
+  // along y. It reaches s cells further down-left than the level before.
+  const std::int32_t w = prev.width, h = prev.height;
+  std::vector<std::uint8_t> along_x(static_cast<std::size_t>(w + s) * static_cast<std::size_t>(h));
+  const auto row = [](auto& v, std::int32_t y, std::int32_t width) {
+    return v.data() + static_cast<std::ptrdiff_t>(y) * width;
+  };
+  for (std::int32_t y = 0; y < h; ++y) max_pairs(row(prev.values, y, w), w, s, row(along_x, y, w + s));
+  Level next;
+  next.origin = {prev.origin.x - s, prev.origin.y - s};
+  next.width = w + s;
+  next.height = h + s;
+  next.values.resize(static_cast<std::size_t>(next.width) * static_cast<std::size_t>(next.height));
+  for (std::int32_t y = 0; y < h + s; ++y)
+    max_rows(y - s >= 0 && y - s < h ? row(along_x, y - s, w + s) : nullptr, y < h ? row(along_x, y, w + s) : nullptr,
+             w + s, next.values.data() + static_cast<std::ptrdiff_t>(y) * (w + s));
+  return next;
+}
+
+BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy, int max_depth,
+                                             std::optional<CellIndex> region_min, std::optional<CellIndex> region_max)
+    : resolution_(grid.resolution()) {
+  // Blocks of 2^(depth-1) cells at the top cover the window's 2w/res + 1 offsets.
+  const double offsets = 2.0 * max_window_xy / resolution_ + 1.0;
+  const int depth = std::clamp(1 + static_cast<int>(std::ceil(std::log2(std::max(1.0, offsets)))), 1, max_depth);
+  CellIndex lo, hi;
+  grid.bounds(lo, hi);
+  if (region_min) lo = {std::max(lo.x, region_min->x), std::max(lo.y, region_min->y)};
+  if (region_max) hi = {std::min(hi.x, region_max->x), std::min(hi.y, region_max->y)};
+  hi = {std::max(hi.x, lo.x), std::max(hi.y, lo.y)};
+  Level base;
+  base.origin = lo;
+  base.width = hi.x - lo.x;
+  base.height = hi.y - lo.y;
+  base.values.assign(static_cast<std::size_t>(base.width) * static_cast<std::size_t>(base.height), kUnknown);
+  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    if (origin.x >= hi.x || origin.y >= hi.y || origin.x + DsGrid::kTileSize <= lo.x ||
+        origin.y + DsGrid::kTileSize <= lo.y)
+      return;
+    for (int i = 0; i < DsGrid::kTileCells; ++i) {
+      const CellIndex c = DsGrid::tile_cell(origin, i);
+      if (c.x < lo.x || c.y < lo.y || c.x >= hi.x || c.y >= hi.y) continue;
+      const auto v = static_cast<std::uint8_t>(kZero * (1.0f + cells[i].occupied - cells[i].free) + 0.5f);
+      base.values[static_cast<std::size_t>(c.y - lo.y) * static_cast<std::size_t>(base.width) +
+                  static_cast<std::size_t>(c.x - lo.x)] = v;
+    }
+  });
+  levels_.push_back(std::move(base));
+  // Level h (blocks of 2^h cells) from level h-1 by doubling.
+  for (int h = 1; h < depth; ++h) levels_.push_back(doubled(levels_.back(), 1 << (h - 1)));
+}
+
+std::size_t BranchAndBoundMatcher::memory_bytes() const {
+  std::size_t n = 0;
+  for (const Level& l : levels_) n += l.values.capacity();
+  return n;
+}
+
+// One match call: the scan discretized per heading, and the depth-first search.
+struct BranchAndBoundMatcher::Search {
+  const BranchAndBoundMatcher& matcher;
+  std::vector<std::vector<CellIndex>> cells;  // per heading: the points' cells at the prior translation
+  std::vector<double> headings;               // per heading: θ offset from the prior
+  std::vector<float> weights;
+  double weight_sum = 0.0;
+  std::int32_t half_window = 0;  // offsets from -half_window to +half_window cells
+  Pose2 prior;
+  std::optional<Pose2> exclude;
+  double exclude_xy = 0.0, exclude_theta = 0.0;
+
+  struct Candidate {
+    int heading;
+    std::int32_t x, y;  // offset (cells) of the block's lower-left translation
+    double score;
+  };
+
+  double score(const Candidate& c, int level) const {
+    const Level& l = matcher.levels_[static_cast<std::size_t>(level)];
+    const std::vector<CellIndex>& pts = cells[static_cast<std::size_t>(c.heading)];
+    double sum = 0.0;
+    for (std::size_t i = 0; i < pts.size(); ++i) sum += weights[i] * l.at(pts[i].x + c.x, pts[i].y + c.y);
+    return to_score(sum / weight_sum);
+  }
+  Pose2 pose_of(const Candidate& c) const {
+    const double r = matcher.resolution_;
+    return {prior.x + c.x * r, prior.y + c.y * r, prior.theta + headings[static_cast<std::size_t>(c.heading)]};
+  }
+  bool excluded(const Candidate& c) const {
+    if (!exclude) return false;
+    const Pose2 p = pose_of(c);
+    return std::hypot(p.x - exclude->x, p.y - exclude->y) < exclude_xy &&
+           std::abs(normalize_angle(p.theta - exclude->theta)) < exclude_theta;
+  }
+
+  // Children of `c` (a block at `level`), scored at level - 1, best first.
+  std::vector<Candidate> children(const Candidate& c, int level) const {
+    const std::int32_t s = 1 << (level - 1);
+    std::vector<Candidate> out;
+    for (std::int32_t dy : {0, s})
+      for (std::int32_t dx : {0, s}) {
+        Candidate k{c.heading, c.x + dx, c.y + dy, 0.0};
+        if (k.x > half_window || k.y > half_window) continue;
+        k.score = score(k, level - 1);
+        out.push_back(k);
+      }
+    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+    return out;
+  }
+
+  void descend(const Candidate& c, int level, Candidate& best) const {
+    if (c.score <= best.score) return;
+    if (level == 0) {
+      if (!excluded(c)) best = c;
+      return;
+    }
+    for (const Candidate& k : children(c, level)) {
+      if (k.score <= best.score) break;  // sorted: none after it can do better
+      descend(k, level - 1, best);
+    }
+  }
+};
+
+double BranchAndBoundMatcher::heading_step(const std::vector<ScanPoint>& points) const {
+  double max_range = 0.0;
+  for (const ScanPoint& p : points)
+    max_range = std::max(max_range, std::hypot(static_cast<double>(p.x), static_cast<double>(p.y)));
+  // Law of cosines: the rotation that moves a point at max_range by one cell.
+  return max_range > resolution_ ? std::acos(1.0 - resolution_ * resolution_ / (2.0 * max_range * max_range))
+                                 : std::numbers::pi;
+}
+
+double BranchAndBoundMatcher::score(const std::vector<ScanPoint>& points, const Pose2& pose) const {
+  const PointTransform to_world(pose);
+  const double inv = 1.0 / resolution_;
+  double sum = 0.0, weights = 0.0;
+  for (const ScanPoint& p : points) {
+    const Eigen::Vector2d w = to_world(p.x, p.y);
+    sum += p.weight * levels_.front().at(static_cast<std::int32_t>(std::floor(w.x() * inv)),
+                                         static_cast<std::int32_t>(std::floor(w.y() * inv)));
+    weights += p.weight;
+  }
+  return weights > 0.0 ? to_score(sum / weights) : 0.0;
+}
+
+std::optional<BranchAndBoundResult> BranchAndBoundMatcher::match(const std::vector<ScanPoint>& points,
+                                                                 const Pose2& prior, const SearchWindow& window,
+                                                                 double min_score, const std::optional<Pose2>& exclude,
+                                                                 double exclude_xy, double exclude_theta) const {
+  if (points.empty()) return std::nullopt;
+  Search search{*this, {}, {}, {}, 0.0, 0, prior, exclude, exclude_xy, exclude_theta};
+  for (const ScanPoint& p : points) {
+    search.weights.push_back(p.weight);
+    search.weight_sum += p.weight;
+  }
+  if (!(search.weight_sum > 0.0)) return std::nullopt;
+  const double step = heading_step(points);
+  const int steps = static_cast<int>(std::ceil(window.theta / step));
+  const double inv = 1.0 / resolution_;
+  for (int k = -steps; k <= steps; ++k) {
+    const double dtheta = k * step;
+    const PointTransform to_world(Pose2(prior.x, prior.y, prior.theta + dtheta));
+    std::vector<CellIndex> cells;
+    cells.reserve(points.size());
+    for (const ScanPoint& p : points) {
+      const Eigen::Vector2d w = to_world(p.x, p.y);
+      cells.push_back({static_cast<std::int32_t>(std::floor(w.x() * inv)), static_cast<std::int32_t>(std::floor(w.y() * inv))});
+    }
+    search.cells.push_back(std::move(cells));
+    search.headings.push_back(dtheta);
+  }
+  const int max_level = depth() - 1;
+  search.half_window = static_cast<std::int32_t>(std::ceil(window.xy * inv));
+  const std::int32_t block = 1 << max_level;
+  std::vector<Search::Candidate> top;
+  for (int h = 0; h < static_cast<int>(search.headings.size()); ++h)
+    for (std::int32_t y = -search.half_window; y <= search.half_window; y += block)
+      for (std::int32_t x = -search.half_window; x <= search.half_window; x += block) {
+        Search::Candidate c{h, x, y, 0.0};
+        c.score = search.score(c, max_level);
+        top.push_back(c);
+      }
+  std::sort(top.begin(), top.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
+  Search::Candidate best{0, 0, 0, min_score};  // beaten only by poses scoring more
+  for (const Search::Candidate& c : top) {
+    if (c.score <= best.score) break;
+    search.descend(c, max_level, best);
+  }
+  if (!(best.score > min_score)) return std::nullopt;
+  return BranchAndBoundResult{search.pose_of(best), best.score};
+}
+
+}  // namespace dsswarm

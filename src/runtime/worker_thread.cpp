@@ -1,0 +1,78 @@
+#include "runtime/worker_thread.hpp"
+
+#include <malloc.h>
+#include <time.h>
+
+#include <chrono>
+
+namespace dsswarm {
+namespace {
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+}  // namespace
+
+WorkerThread::WorkerThread() : thread_([this] { run(); }) {}
+
+WorkerThread::~WorkerThread() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  work_or_stop_.notify_one();
+  thread_.join();
+}
+
+void WorkerThread::submit(std::function<void()> job) {
+  {
+    std::lock_guard lock(mutex_);
+    jobs_.push_back(std::move(job));
+  }
+  work_or_stop_.notify_one();
+}
+
+void WorkerThread::wait() {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [this] { return jobs_.empty() && !busy_; });
+  waited_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double WorkerThread::cpu_seconds() const {
+  std::lock_guard lock(mutex_);
+  return cpu_seconds_;
+}
+
+double WorkerThread::waited_seconds() const {
+  std::lock_guard lock(mutex_);
+  return waited_seconds_;
+}
+
+void WorkerThread::run() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    work_or_stop_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+    if (jobs_.empty()) return;  // stopping, nothing left
+    std::function<void()> job = std::move(jobs_.front());
+    jobs_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    const double t0 = thread_cpu_seconds();
+    job();
+#ifdef __GLIBC__
+    // A job's scratch memory (thawed submaps, bounds, the solver's matrices)
+    // is freed in scattered pieces that glibc keeps resident; hand it back so
+    // a long run does not grow by what its largest rounds once needed.
+    malloc_trim(0);
+#endif
+    const double spent = thread_cpu_seconds() - t0;
+    lock.lock();
+    cpu_seconds_ += spent;
+    busy_ = false;
+    if (jobs_.empty()) idle_.notify_all();
+  }
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,45 @@
+#pragma once
+// An Executor (slam/executor.hpp) with a thread of its own: jobs run one
+// after the other, in the order submitted, while the submitting thread goes
+// on. The thread plumbing the core leaves out lives here.
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+#include "slam/executor.hpp"
+
+namespace dsswarm {
+
+class WorkerThread final : public Executor {
+ public:
+  WorkerThread();
+  // Finishes the jobs already submitted, then stops the thread.
+  ~WorkerThread() override;
+  WorkerThread(const WorkerThread&) = delete;
+  WorkerThread& operator=(const WorkerThread&) = delete;
+
+  void submit(std::function<void()> job) override;
+  void wait() override;
+
+  // CPU time the thread has spent in jobs so far, seconds.
+  double cpu_seconds() const;
+  // Wall time submitters spent in wait() for jobs still running, seconds.
+  double waited_seconds() const;
+
+ private:
+  void run();
+
+  mutable std::mutex mutex_;
+  std::condition_variable work_or_stop_;
+  std::condition_variable idle_;
+  std::deque<std::function<void()>> jobs_;
+  bool busy_ = false;
+  bool stop_ = false;
+  double cpu_seconds_ = 0.0;
+  double waited_seconds_ = 0.0;
+  std::thread thread_;  // last: starts once everything above exists
+};
+
+}  // namespace dsswarm

@@ -1,0 +1,27 @@
+#pragma once
+// Where background work runs. The core hands over whole jobs — pure
+// functions of data it no longer touches until the job is done — and asks
+// later to wait for them; it owns no threads itself. The default runs each
+// job at once, on the caller's thread; runtime/worker_thread.hpp runs them
+// on a thread of their own. Results are picked up at the same points either
+// way, so both give the same output.
+#include <functional>
+
+namespace dsswarm {
+
+class Executor {
+ public:
+  virtual ~Executor() = default;
+  // Runs `job` (now, or on another thread).
+  virtual void submit(std::function<void()> job) = 0;
+  // Returns once every job submitted so far has finished.
+  virtual void wait() = 0;
+};
+
+class InlineExecutor final : public Executor {
+ public:
+  void submit(std::function<void()> job) override { job(); }
+  void wait() override {}
+};
+
+}  // namespace dsswarm

@@ -1,0 +1,235 @@
+#include "slam/loop_closer.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "common/errors.hpp"
+#include "slam/loop_round.hpp"
+
+namespace dsswarm {
+
+void LoopClosureConfig::validate() const {
+  if (!(node_spacing > 0.0) || !(node_rotation > 0.0))
+    throw ConfigError("loop_closure.node_spacing and node_rotation must be > 0");
+  if (overlap_nodes < 1) throw ConfigError("loop_closure.overlap_nodes must be >= 1");
+  if (!(search_spacing >= 0.0)) throw ConfigError("loop_closure.search_spacing must be >= 0");
+  if (!(max_distance > 0.0)) throw ConfigError("loop_closure.max_distance must be > 0");
+  if (max_submaps < 1) throw ConfigError("loop_closure.max_submaps must be >= 1");
+  if (!(window_xy > 0.0) || !(window_xy_per_m >= 0.0) || !(max_window_xy >= window_xy))
+    throw ConfigError("loop_closure.window_xy must be > 0, window_xy_per_m >= 0, max_window_xy >= window_xy");
+  if (!(window_theta > 0.0) || !(window_theta_per_m >= 0.0) || !(max_window_theta >= window_theta) ||
+      !(max_window_theta <= 3.2))
+    throw ConfigError(
+        "loop_closure.window_theta must be > 0, window_theta_per_m >= 0, max_window_theta in [window_theta, 3.2]");
+  if (!(consistency_travel > 0.0) || !(agree_xy > 0.0) || !(agree_theta > 0.0))
+    throw ConfigError("loop_closure.consistency_travel, agree_xy and agree_theta must be > 0");
+  if (pending_rounds < 0) throw ConfigError("loop_closure.pending_rounds must be >= 0");
+  if (!(max_residual_xy > 0.0) || !(max_residual_theta > 0.0))
+    throw ConfigError("loop_closure.max_residual_xy and max_residual_theta must be > 0");
+  if (round_nodes < 1) throw ConfigError("loop_closure.round_nodes must be >= 1");
+  search.validate();
+  graph.validate();
+}
+
+LoopCloser::LoopCloser(const LoopClosureConfig& config, const MapConfig& map, const PointWeightConfig& weights,
+                       std::uint64_t seed, Executor* executor)
+    : config_(config), map_(map), weights_(weights), seed_(seed), executor_(executor ? executor : &inline_) {}
+
+LoopCloser::~LoopCloser() {
+  // A round still running reads data this object shares with it.
+  if (in_flight_) executor_->wait();
+}
+
+void LoopCloser::add_fixed_submap() {
+  submaps_.push_back({Pose2(), {}, 0.0, 0.0, nullptr, true});
+}
+
+void LoopCloser::note_finished(const Submaps& submaps) {
+  for (const auto& s : submaps.finished()) {
+    const auto id = static_cast<std::size_t>(s->id);
+    if (id >= submaps_.size()) submaps_.resize(id + 1);
+    SubmapRecord& r = submaps_[id];
+    if (r.finished) continue;
+    r.finished = s;
+    r.anchor = s->anchor;
+    r.travel_end = travel_;
+  }
+}
+
+void LoopCloser::add_scan(std::size_t index, const Pose2& local_pose, std::optional<int> submap,
+                          const std::vector<ScanPoint>& points, const Submaps& submaps) {
+  if (last_scan_pose_) travel_ += std::hypot(local_pose.x - last_scan_pose_->x, local_pose.y - last_scan_pose_->y);
+  last_scan_pose_ = local_pose;
+  if (submap) {
+    const auto id = static_cast<std::size_t>(*submap);
+    if (id >= submaps_.size()) submaps_.resize(id + 1);
+    SubmapRecord& r = submaps_[id];
+    if (r.nodes.empty() && !r.finished) {
+      r.anchor = submaps.current().id == *submap ? submaps.current().anchor : submaps.finished().back()->anchor;
+      r.travel_begin = travel_;
+    }
+    bool node = r.nodes.empty() || nodes_.empty();
+    if (!node) {
+      const Pose2 d = between(nodes_.back().local, local_pose);
+      node = std::hypot(d.x, d.y) >= config_.node_spacing || std::abs(d.theta) >= config_.node_rotation;
+    }
+    if (node) add_node(index, local_pose, *submap, points);
+  }
+  if (index != scans_.size()) throw ConfigError("LoopCloser::add_scan: scans out of order");
+  const int n = static_cast<int>(nodes_.size()) - 1;
+  scans_.push_back({n, n >= 0 ? between(nodes_.back().local, local_pose) : local_pose});
+  note_finished(submaps);
+  if (config_.enabled && nodes_since_round_ >= config_.round_nodes) start_round();
+}
+
+void LoopCloser::add_node(std::size_t index, const Pose2& local_pose, int submap, const std::vector<ScanPoint>& points) {
+  const int id = static_cast<int>(nodes_.size());
+  Node node{index, local_pose, submap, travel_, nullptr};
+  if (config_.enabled && travel_ - last_search_travel_ >= config_.search_spacing) {
+    node.points = std::make_shared<const CompactScan>(points);
+    last_search_travel_ = travel_;
+  }
+  SubmapRecord& r = submaps_[static_cast<std::size_t>(submap)];
+  constraints_.push_back({Constraint::Kind::local, submap, id, between(r.anchor, local_pose)});
+  // The first nodes of a submap in the one before, where local SLAM put them
+  // (for the first submap in a given map: where its first scan was located).
+  const int own_nodes = static_cast<int>(r.nodes.size());
+  if (submap > 0 && own_nodes < config_.overlap_nodes) {
+    const SubmapRecord& before = submaps_[static_cast<std::size_t>(submap - 1)];
+    if (!before.nodes.empty() || before.fixed)
+      constraints_.push_back({Constraint::Kind::local, submap - 1, id, between(before.anchor, local_pose)});
+  }
+  r.nodes.push_back(id);
+  nodes_.push_back(std::move(node));
+  ++nodes_since_round_;
+}
+
+void LoopCloser::revise_scan(std::size_t index, const Pose2& local_pose) {
+  ScanRecord& s = scans_.at(index);
+  s.relative = s.node >= 0 ? between(nodes_[static_cast<std::size_t>(s.node)].local, local_pose) : local_pose;
+}
+
+TrajectoryNode LoopCloser::node(std::size_t i) const {
+  const Node& n = nodes_.at(i);
+  const Pose2& anchor = submaps_[static_cast<std::size_t>(n.submap)].anchor;
+  return {n.scan, n.submap, n.local, between(anchor, n.local), node_global(static_cast<int>(i)), n.points != nullptr};
+}
+
+Pose2 LoopCloser::node_global(int node) const {
+  const auto i = static_cast<std::size_t>(node);
+  return i < optimized_.size() ? optimized_[i] : global_from_local_ * nodes_[i].local;
+}
+
+Pose2 LoopCloser::submap_cells_pose(int submap) const {
+  const auto i = static_cast<std::size_t>(submap);
+  // Not optimized yet: moved with the rest of the trajectory.
+  if (i >= optimized_submaps_.size()) return global_from_local_;
+  return optimized_submaps_[i] * submaps_[i].anchor.inverse();
+}
+
+std::vector<Pose2> LoopCloser::trajectory() const {
+  std::vector<Pose2> out;
+  out.reserve(scans_.size());
+  for (const ScanRecord& s : scans_) out.push_back(s.node >= 0 ? node_global(s.node) * s.relative : s.relative);
+  return out;
+}
+
+std::vector<Pose2> LoopCloser::local_trajectory() const {
+  std::vector<Pose2> out;
+  out.reserve(scans_.size());
+  for (const ScanRecord& s : scans_)
+    out.push_back(s.node >= 0 ? nodes_[static_cast<std::size_t>(s.node)].local * s.relative : s.relative);
+  return out;
+}
+
+std::size_t LoopCloser::memory_bytes() const {
+  std::size_t n = nodes_.capacity() * sizeof(Node) + scans_.capacity() * sizeof(ScanRecord) +
+                  constraints_.capacity() * sizeof(Constraint) + optimized_.capacity() * sizeof(Pose2);
+  for (const Node& node : nodes_)
+    if (node.points) n += node.points->memory_bytes();
+  for (const SubmapRecord& r : submaps_) n += r.nodes.capacity() * sizeof(int);
+  return n;
+}
+
+void LoopCloser::start_round() {
+  if (in_flight_) {
+    executor_->wait();
+    apply_round();
+  }
+  nodes_since_round_ = 0;
+  auto round = std::make_unique<Round>();
+  RoundInput& in = round->in;
+  in.map = map_;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    in.graph.nodes.push_back(node_global(static_cast<int>(i)));
+    in.node_submap.push_back(nodes_[i].submap);
+    in.node_travel.push_back(nodes_[i].travel);
+    if (nodes_[i].points && i >= searched_up_to_) in.searches.push_back({static_cast<int>(i), nodes_[i].points});
+  }
+  searched_up_to_ = nodes_.size();
+  for (std::size_t s = 0; s < submaps_.size(); ++s) {
+    const SubmapRecord& r = submaps_[s];
+    const Pose2 global = submap_cells_pose(static_cast<int>(s)) * r.anchor;
+    in.graph.submaps.push_back(global);
+    in.submaps.push_back({r.finished, r.nodes, r.anchor, r.finished ? r.travel_end : travel_, r.fixed});
+  }
+  in.graph.constraints = constraints_;
+  in.graph.fixed_submap = 0;
+  in.pending = pending_;
+  in.last_closure_travel = last_closure_travel_;
+  Round* job = round.get();
+  in_flight_ = std::move(round);
+  const LoopClosureConfig config = config_;
+  const PointWeightConfig weights = weights_;
+  const std::uint64_t seed = seed_;
+  executor_->submit([job, config, weights, seed] { run_round(*job, config, weights, seed); });
+}
+
+LoopClosure LoopCloser::record(const LoopCandidate& c) const {
+  const SubmapRecord& r = submaps_[static_cast<std::size_t>(c.submap)];
+  LoopClosure closure{nodes_[static_cast<std::size_t>(c.node)].scan, c.submap, std::nullopt, c.relative,
+                      std::nullopt, Pose2(), c.score, c.inliers, c.same_side};
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int n : r.nodes) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (!closure.anchor_scan) closure.anchor_scan = node.scan;
+    const Pose2 in_submap = between(r.anchor, node.local);
+    const double d = std::hypot(in_submap.x - c.relative.x, in_submap.y - c.relative.y);
+    if (d < nearest) {
+      nearest = d;
+      closure.nearest_scan = node.scan;
+      closure.relative_to_nearest = between(in_submap, c.relative);
+    }
+  }
+  return closure;
+}
+
+void LoopCloser::apply_round() {
+  std::unique_ptr<Round> round = std::move(in_flight_);
+  const RoundOutput& out = round->out;
+  add_stats(stats_, out.stats);
+  ++stats_.rounds;
+  pending_ = out.pending;
+  for (const LoopCandidate& c : out.accepted) {
+    constraints_.push_back({Constraint::Kind::loop, c.submap, c.node, c.relative});
+    closures_.push_back(record(c));
+    last_closure_travel_ = std::max(last_closure_travel_, nodes_[static_cast<std::size_t>(c.node)].travel);
+  }
+  if (!out.optimized) return;
+  ++stats_.optimizations;
+  optimized_ = out.graph.nodes;
+  optimized_submaps_ = out.graph.submaps;
+  const Node& last = nodes_[optimized_.size() - 1];
+  global_from_local_ = optimized_.back() * last.local.inverse();
+  ++version_;
+}
+
+void LoopCloser::finish(const Submaps& submaps) {
+  note_finished(submaps);
+  if (!config_.enabled) return;
+  start_round();  // applies the round in flight, hands over what is left
+  executor_->wait();
+  apply_round();
+}
+
+}  // namespace dsswarm

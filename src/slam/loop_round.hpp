@@ -1,0 +1,120 @@
+#pragma once
+// One background round of loop closing (see loop_closer.hpp): a pure function
+// from a snapshot of the graph to new closures and optimized poses.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "sensor/scan_points.hpp"
+#include "slam/compact_scan.hpp"
+#include "slam/loop_search.hpp"
+#include "slam/pose_graph.hpp"
+#include "slam/submaps.hpp"
+
+namespace dsswarm {
+
+struct LoopClosureConfig {
+  bool enabled = false;  // off by default: docs/loop_closure.md
+  // A scan inserted into a submap becomes a trajectory node when the robot
+  // moved this much since the last node (and always the first of a submap).
+  // The first `overlap_nodes` nodes of a submap are also tied into the
+  // submap before it: that holds consecutive submaps together.
+  double node_spacing = 0.2;           // m
+  double node_rotation = 0.1;          // rad
+  int overlap_nodes = 3;
+  // Nodes this far apart along the trajectory are searched for loop closures.
+  double search_spacing = 0.5;         // m
+  double max_distance = 5.0;           // m: submaps with a node this close to the searched node's estimate
+  int max_submaps = 3;                 // searched per node, nearest first
+  // The search window grows with the distance travelled since the submap or
+  // the last accepted closure, whichever is later.
+  double window_xy = 0.3;              // m
+  double window_xy_per_m = 0.05;
+  double max_window_xy = 5.0;          // m
+  double window_theta = 0.05;          // rad
+  double window_theta_per_m = 0.005;   // rad per m
+  double max_window_theta = 0.5;       // rad
+  LoopSearchConfig search;
+  // Pairwise consistency: a verified candidate is accepted once another
+  // closure (of this round, an earlier pending one or an accepted one) whose
+  // node is within consistency_travel along the trajectory, and whose submap
+  // is the same or as close, agrees with it within agree_xy / agree_theta.
+  // Unconfirmed candidates wait `pending_rounds` rounds for a partner.
+  double consistency_travel = 10.0;    // m
+  double agree_xy = 0.1;               // m
+  double agree_theta = 0.035;          // rad (2°)
+  int pending_rounds = 3;
+  // After optimization, a new closure whose error is still beyond these is
+  // dropped (the graph does not bear it out) and the graph re-optimized.
+  double max_residual_xy = 0.2;        // m
+  double max_residual_theta = 0.05;    // rad
+  int round_nodes = 20;
+  PoseGraphConfig graph;
+
+  void validate() const;  // throws ConfigError naming the field
+};
+
+struct LoopClosureStats {
+  std::size_t rounds = 0;
+  std::size_t optimizations = 0;
+  std::size_t searches = 0;              // (node, submap) pairs tried
+  std::size_t candidates = 0;            // passed every check of the search
+  std::size_t accepted = 0;
+  std::size_t rejected_no_match = 0;
+  std::size_t rejected_unknown = 0;
+  std::size_t rejected_inliers = 0;
+  std::size_t rejected_same_side = 0;
+  std::size_t rejected_ambiguous = 0;
+  std::size_t rejected_inconsistent = 0;  // never found an agreeing partner
+  std::size_t rejected_residual = 0;      // not borne out by the optimized graph
+  double background_seconds = 0.0;        // wall time of the rounds themselves
+};
+
+// A verified candidate waiting for an agreeing partner.
+struct PendingCandidate {
+  LoopCandidate candidate;
+  int age = 0;  // rounds waited
+};
+
+struct RoundInput {
+  MapConfig map;    // the submaps' (to thaw them)
+  PoseGraph graph;  // estimates and constraints at hand-over
+  std::vector<int> node_submap;
+  std::vector<double> node_travel;
+  struct Search {
+    int node;
+    std::shared_ptr<const CompactScan> points;
+  };
+  std::vector<Search> searches;  // new nodes to search
+  struct SubmapInfo {
+    std::shared_ptr<const Submap> finished;  // null: still growing, not searched
+    std::vector<int> nodes;
+    Pose2 anchor;
+    double travel_end = 0.0;  // m along the trajectory where it ends (so far)
+    bool fixed = false;       // a given map
+  };
+  std::vector<SubmapInfo> submaps;
+  std::vector<PendingCandidate> pending;
+  double last_closure_travel = -1e9;
+};
+
+struct RoundOutput {
+  std::vector<LoopCandidate> accepted;
+  std::vector<PendingCandidate> pending;
+  bool optimized = false;
+  PoseGraph graph;  // the optimized poses (when optimized)
+  LoopClosureStats stats;
+};
+
+struct Round {
+  RoundInput in;
+  RoundOutput out;
+};
+
+// Searches, verifies, checks consistency and optimizes; fills round.out.
+void run_round(Round& round, const LoopClosureConfig& config, const PointWeightConfig& weights, std::uint64_t seed);
+
+void add_stats(LoopClosureStats& total, const LoopClosureStats& more);
+
+}  // namespace dsswarm

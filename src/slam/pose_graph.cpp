@@ -1,0 +1,100 @@
+#include "slam/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+
+#include <array>
+#include <numbers>
+
+#include "common/errors.hpp"
+
+namespace dsswarm {
+
+void PoseGraphConfig::validate() const {
+  if (!(local_sigma_xy > 0.0) || !(local_sigma_theta > 0.0) || !(loop_sigma_xy > 0.0) || !(loop_sigma_theta > 0.0))
+    throw ConfigError("graph.local_sigma_xy/theta and graph.loop_sigma_xy/theta must be > 0");
+  if (!(loop_huber > 0.0)) throw ConfigError("graph.loop_huber must be > 0");
+  if (max_iterations < 1) throw ConfigError("graph.max_iterations must be >= 1");
+}
+
+namespace {
+
+template <typename T>
+T wrapped(T a) {
+  const T two_pi = T(2.0 * std::numbers::pi);
+  while (a > T(std::numbers::pi)) a -= two_pi;
+  while (a < T(-std::numbers::pi)) a += two_pi;
+  return a;
+}
+
+// Residual of a relative-pose measurement z of a node in a submap's frame:
+// (submap⁻¹ ⊕ node) ⊖ z, scaled by the inverse standard deviations.
+struct RelativePoseError {
+  Pose2 z;
+  double weight_xy, weight_theta;
+
+  template <typename T>
+  bool operator()(const T* from, const T* to, T* residual) const {
+    const T c = cos(from[2]), s = sin(from[2]);
+    const T dx = to[0] - from[0], dy = to[1] - from[1];
+    residual[0] = weight_xy * (c * dx + s * dy - z.x);
+    residual[1] = weight_xy * (-s * dx + c * dy - z.y);
+    residual[2] = weight_theta * wrapped(to[2] - from[2] - T(z.theta));
+    return true;
+  }
+};
+
+using Block = std::array<double, 3>;
+
+Block block_of(const Pose2& p) { return {p.x, p.y, p.theta}; }
+
+}  // namespace
+
+Pose2 constraint_error(const PoseGraph& graph, const Constraint& c) {
+  return between(c.relative, between(graph.submaps[static_cast<std::size_t>(c.submap)],
+                                     graph.nodes[static_cast<std::size_t>(c.node)]));
+}
+
+OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
+  OptimizationSummary summary;
+  if (graph.nodes.empty()) return summary;
+  std::vector<Block> nodes, submaps;
+  for (const Pose2& p : graph.nodes) nodes.push_back(block_of(p));
+  for (const Pose2& p : graph.submaps) submaps.push_back(block_of(p));
+
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::HuberLoss huber(config.loop_huber);
+  for (const Constraint& c : graph.constraints) {
+    const bool loop = c.kind == Constraint::Kind::loop;
+    const double wxy = 1.0 / (loop ? config.loop_sigma_xy : config.local_sigma_xy);
+    const double wth = 1.0 / (loop ? config.loop_sigma_theta : config.local_sigma_theta);
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(new RelativePoseError{c.relative, wxy, wth});
+    problem.AddResidualBlock(cost, loop ? &huber : nullptr, submaps[static_cast<std::size_t>(c.submap)].data(),
+                             nodes[static_cast<std::size_t>(c.node)].data());
+  }
+  // One submap held fixed anchors the global frame.
+  if (graph.fixed_submap >= 0 && static_cast<std::size_t>(graph.fixed_submap) < submaps.size()) {
+    double* fixed = submaps[static_cast<std::size_t>(graph.fixed_submap)].data();
+    if (problem.HasParameterBlock(fixed)) problem.SetParameterBlockConstant(fixed);
+  }
+
+  ceres::Solver::Options options;
+  // Nodes only meet submaps: eliminated first, they leave a small system in the submaps.
+  options.linear_solver_type = ceres::SPARSE_SCHUR;
+  options.num_threads = 1;  // deterministic, and the caller decides where it runs
+  options.max_num_iterations = config.max_iterations;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary report;
+  ceres::Solve(options, &problem, &report);
+  summary.iterations = static_cast<int>(report.iterations.size());
+  summary.initial_cost = report.initial_cost;
+  summary.final_cost = report.final_cost;
+  summary.usable = report.IsSolutionUsable();
+  if (!summary.usable) return summary;
+  for (std::size_t i = 0; i < nodes.size(); ++i) graph.nodes[i] = {nodes[i][0], nodes[i][1], nodes[i][2]};
+  for (std::size_t i = 0; i < submaps.size(); ++i) graph.submaps[i] = {submaps[i][0], submaps[i][1], submaps[i][2]};
+  return summary;
+}
+
+}  // namespace dsswarm

@@ -1,0 +1,68 @@
+#pragma once
+// The pose graph of one robot (sparse pose adjustment, Konolige et al. 2010,
+// as in Cartographer): trajectory nodes and submaps are SE(2) poses in the
+// global frame, tied by relative-pose constraints of a node in a submap
+//
+//   * local: local SLAM's estimate, for the submap the node's scan went into
+//     and, where submaps meet, the one before it (that ties them together),
+//   * loop:  a loop closure into another submap, under a robust loss,
+//
+// and optimized by Ceres (one thread). No constraint joins two nodes, so
+// Ceres eliminates the nodes first (Schur complement) and factorizes only
+// the submaps' part: fast, and small in memory however long the trajectory.
+// The graph is plain data: the loop-closure module snapshots it, optimizes
+// the copy and hands the poses back (loop_closer.hpp).
+#include <cstdint>
+#include <vector>
+
+#include "geometry/pose2.hpp"
+
+namespace dsswarm {
+
+struct PoseGraphConfig {
+  // Standard deviations of the constraints' errors: residuals are divided by
+  // them. Local SLAM is trusted over short distances; a loop closure's scan
+  // was placed in a submap built long before.
+  double local_sigma_xy = 0.02;      // m
+  double local_sigma_theta = 0.005;  // rad
+  double loop_sigma_xy = 0.05;       // m
+  double loop_sigma_theta = 0.01;    // rad
+  // Huber loss on loop closures, in units of their sigmas: beyond it an edge
+  // pulls with constant force, so one wrong closure cannot drag the graph far
+  // while a right one after a long drift still pulls the loop shut.
+  double loop_huber = 3.0;
+  int max_iterations = 50;
+
+  void validate() const;  // throws ConfigError naming the field
+};
+
+struct Constraint {
+  enum class Kind : std::uint8_t { local, loop };
+  Kind kind = Kind::local;
+  int submap = 0;
+  int node = 0;
+  Pose2 relative;   // measured pose of the node in the submap's frame (its anchor)
+};
+
+struct PoseGraph {
+  std::vector<Pose2> nodes;    // global poses of the trajectory nodes
+  std::vector<Pose2> submaps;  // global poses of the submaps' anchors
+  std::vector<Constraint> constraints;
+  int fixed_submap = 0;        // held constant: it anchors the global frame
+};
+
+struct OptimizationSummary {
+  int iterations = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  bool usable = false;  // false: the poses were left as they were
+};
+
+// Optimizes the poses of `graph` in place.
+OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config);
+
+// The constraint's error at the graph's current poses: where the node is,
+// seen from the submap, relative to where the constraint measured it.
+Pose2 constraint_error(const PoseGraph& graph, const Constraint& c);
+
+}  // namespace dsswarm

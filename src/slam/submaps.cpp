@@ -1,0 +1,135 @@
+#include "slam/submaps.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "common/errors.hpp"
+#include "grid/map_combine.hpp"
+
+namespace dsswarm {
+
+void InsertConfig::validate() const {
+  if (min_travel < 0.0 || min_rotation < 0.0)
+    throw ConfigError("slam.insert_min_travel and insert_min_rotation must be >= 0");
+}
+
+void SubmapConfig::validate() const {
+  if (max_scans < 0) throw ConfigError("submaps.max_scans must be >= 0");
+  if (!(max_travel >= 0.0)) throw ConfigError("submaps.max_travel must be >= 0");
+  if (!(keep_previous >= 0.0 && keep_previous <= 1.0)) throw ConfigError("submaps.keep_previous must be in [0, 1]");
+}
+
+Submaps::Submaps(const MapConfig& map, const SubmapConfig& submaps, const InsertConfig& insert)
+    : map_config_(map), config_(submaps), insert_(insert), current_(std::make_unique<Submap>()) {
+  current_->map = MultiResMap(map_config_);
+}
+
+void Submaps::start_with(MultiResMap initial, bool extend) {
+  if (initial.config().resolution != map_config_.resolution || initial.levels() != map_config_.levels)
+    throw ConfigError("the initial map's resolution/levels (" + std::to_string(initial.config().resolution) + " m, " +
+                      std::to_string(initial.levels()) + ") differ from map.resolution/map.levels (" +
+                      std::to_string(map_config_.resolution) + " m, " + std::to_string(map_config_.levels) + ")");
+  if (extend) {  // kept as submap 0, the first part of the global map
+    auto given = std::make_shared<Submap>();
+    given->finished = true;
+    given->frozen = FrozenMap(initial);
+    finished_ = {given};
+  }
+  local_ = std::move(initial);  // matched against as it is
+  current_ = std::make_unique<Submap>();
+  current_->id = 1;
+  current_->map = MultiResMap(map_config_);
+}
+
+std::optional<int> Submaps::insert(const Pose2& local_pose, const LaserScan& scan,
+                                   const std::vector<ScanPoint>& points) {
+  double step = 0.0;
+  if (last_insert_pose_) {
+    const Pose2 d = between(*last_insert_pose_, local_pose);
+    if (std::hypot(d.x, d.y) < insert_.min_travel && std::abs(d.theta) < insert_.min_rotation) return std::nullopt;
+    step = std::hypot(d.x, d.y);
+  }
+  Submap& s = *current_;
+  if (s.scans == 0) s.anchor = local_pose;
+  else s.travel += step;
+  if (local_) {
+    MultiResMap* both[] = {&s.map, &*local_};
+    MultiResMap::insert_scan(both, local_pose, scan.laser_offset, points);
+  } else {
+    s.map.insert_scan(local_pose, scan.laser_offset, points);
+  }
+  ++s.scans;
+  last_insert_pose_ = local_pose;
+  ++inserted_;
+  const int id = s.id;
+  const auto reached = [&](double fraction) {
+    return (config_.max_scans > 0 && s.scans >= fraction * config_.max_scans) ||
+           (config_.max_travel > 0.0 && s.travel >= fraction * config_.max_travel);
+  };
+  // Part-way through a submap its own evidence carries local SLAM: the
+  // previous one is let go (half the insertion work and memory from here on).
+  if (local_ && reached(config_.keep_previous)) local_.reset();
+  if (reached(1.0)) finish_current();
+  return id;
+}
+
+void Submaps::finish_current() {
+  current_->finished = true;
+  current_->frozen = FrozenMap(current_->map);
+  // The new submap is matched against this one until it has evidence of its own.
+  local_ = std::move(current_->map);
+  current_->map = MultiResMap(map_config_);
+  std::shared_ptr<const Submap> done(current_.release());
+  finished_.push_back(done);
+  current_ = std::make_unique<Submap>();
+  current_->id = done->id + 1;
+  current_->map = MultiResMap(map_config_);
+}
+
+void Submaps::freeze() {
+  if (config_.single_map()) return;  // the one live map is the map
+  if (current_->scans > 0) finish_current();
+  if (finished_.empty()) return;  // nothing but the (empty) current map
+  local_.reset();
+  frozen_ = true;
+}
+
+void Submaps::resume() {
+  if (!frozen_) return;
+  local_ = finished_.back()->frozen.thaw(map_config_);
+  frozen_ = false;
+}
+
+const MultiResMap& Submaps::local_map() const {
+  return local_ ? *local_ : current_->map;
+}
+
+std::vector<const Submap*> Submaps::all() const {
+  std::vector<const Submap*> out;
+  for (const auto& s : finished_) out.push_back(s.get());
+  if (current_->scans > 0) out.push_back(current_.get());
+  return out;
+}
+
+std::size_t Submaps::memory_bytes() const {
+  std::size_t n = current_->map.memory_bytes() + (local_ ? local_->memory_bytes() : 0);
+  for (const auto& s : finished_) n += s->frozen.memory_bytes();
+  return n;
+}
+
+MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Submap*>& submaps,
+                            const std::function<Pose2(int)>& cells_pose) {
+  MultiResMap map(config);
+  for (const Submap* s : submaps) {
+    const Pose2 pose = cells_pose(s->id);
+    const MultiResMap thawed = s->finished ? s->frozen.thaw(config) : MultiResMap();
+    const MultiResMap& cells = s->finished ? thawed : s->map;
+    if (pose.x == 0.0 && pose.y == 0.0 && pose.theta == 0.0)
+      combine_aligned(map, cells);
+    else
+      combine_into(map, cells, pose);
+  }
+  return map;
+}
+
+}  // namespace dsswarm
