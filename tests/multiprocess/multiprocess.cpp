@@ -1,0 +1,128 @@
+#include "multiprocess.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <deque>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "net/net_test_util.hpp"
+
+namespace dsswarm::mp {
+
+int test_domain(int k) {
+  const std::size_t h = std::hash<std::string>{}(net::test::test_id());
+  return 100 + static_cast<int>((h + 13 * static_cast<std::size_t>(k)) % 130);  // as net::test::test_domain
+}
+
+Rig::Rig() : dir_(fs::path(DSSWARM_TEST_TMP) / "multiprocess" / net::test::test_id()) {
+  fs::remove_all(dir_);
+  fs::create_directories(dir_ / "logs");
+}
+
+Rig::~Rig() {
+  group_.stop_all(5s);
+  if (testing::Test::HasFailure()) std::cout << all_logs();
+  std::error_code ignored;
+  if (!std::getenv("DSSWARM_KEEP_TEST_FILES")) fs::remove_all(dir_, ignored);
+}
+
+std::size_t Rig::start(const std::string& log, const std::vector<std::string>& args) {
+  std::vector<std::string> argv{DSSWARM_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  logs_.push_back(log);
+  return group_.start(argv, dir_ / "logs" / (log + ".log"));
+}
+
+int Rig::wait(std::size_t process, std::chrono::milliseconds timeout) {
+  const std::optional<int> status = group_.wait(process, timeout);
+  if (!status) ADD_FAILURE() << "process " << process << " still running after " << timeout.count() << " ms";
+  return status.value_or(-1);
+}
+
+std::string Rig::log_tail(const std::string& log, std::size_t lines) const {
+  std::ifstream in(dir_ / "logs" / (log + ".log"));
+  std::deque<std::string> tail;
+  for (std::string line; std::getline(in, line);) {
+    tail.push_back(line);
+    if (tail.size() > lines) tail.pop_front();
+  }
+  std::string out;
+  for (const std::string& l : tail) out += "  " + l + "\n";
+  return out;
+}
+
+std::string Rig::all_logs() const {
+  std::string out;
+  for (const std::string& l : logs_) out += "--- " + l + ".log (last lines)\n" + log_tail(l);
+  return out;
+}
+
+std::vector<std::string> agent_args(const SimAgent& a) {
+  std::vector<std::string> args{"agent", "--name", a.name, "--out", a.out.string(), "--sim", "1", "--robot",
+                                std::to_string(a.robot), "--robots", std::to_string(a.robots), "--rate",
+                                fmt::format("{}", a.rate), "--start-at", fmt::format("{:.6f}", a.start_at),
+                                "--interface", "lo", "--no-ros-output"};
+  if (a.keys.empty()) {
+    args.insert(args.end(), {"--swarm-domain", std::to_string(a.domain)});
+  } else {
+    args.insert(args.end(), {"--keys", a.keys.string()});
+  }
+  args.insert(args.end(), a.extra.begin(), a.extra.end());
+  return args;
+}
+
+double unix_in(double seconds) {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + seconds;
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return nlohmann::json::parse(in);
+}
+
+std::vector<std::string> known_origins(const nlohmann::json& stats) {
+  std::vector<std::string> out;
+  for (const nlohmann::json& l : stats.at("knows")) out.push_back(l.at("origin").get<std::string>());
+  return out;
+}
+
+std::map<std::uint64_t, nlohmann::json> outcomes_by_id(const fs::path& encounters_json) {
+  std::map<std::uint64_t, nlohmann::json> out;
+  const nlohmann::json all = read_json(encounters_json);
+  for (const nlohmann::json& o : all.at("encounters"))
+    if (!out.emplace(o.at("encounter").get<std::uint64_t>(), o).second)
+      ADD_FAILURE() << encounters_json.string() << ": encounter " << o.at("encounter") << " ended twice";
+  return out;
+}
+
+bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(50ms);
+  }
+  return true;
+}
+
+void expect_complete_outputs(const fs::path& dir, std::size_t scans) {
+  for (const char* f : {"trajectory.tum", "map.yaml", "map.pgm", "merged_map.yaml", "merged_map.pgm", "encounters.json",
+                        "stats.json", "checkpoint.dsmap", "checkpoint.json"})
+    EXPECT_TRUE(fs::exists(dir / f)) << (dir / f).string() << " missing";
+  const Trajectory t = read_tum(dir / "trajectory.tum");
+  for (std::size_t i = 1; i < t.size(); ++i)
+    ASSERT_GT(t[i].timestamp, t[i - 1].timestamp) << dir.string() << ": pose " << i << " out of order";
+  EXPECT_NO_THROW(read_json(dir / "encounters.json"));
+  const nlohmann::json stats = read_json(dir / "stats.json");
+  // A pose per scan processed; each scan of the run processed or counted as skipped.
+  EXPECT_EQ(t.size(), stats.at("scans_processed").get<std::size_t>()) << dir.string();
+  EXPECT_EQ(stats.at("scans_received").get<std::size_t>(), scans) << dir.string();
+  EXPECT_EQ(stats.at("scans_processed").get<std::size_t>() + stats.at("scans_skipped").get<std::size_t>(), scans)
+      << dir.string();
+}
+
+}  // namespace dsswarm::mp
