@@ -15,7 +15,6 @@
 #include "apps/sim_swarm_run.hpp"
 #include "eval/ate.hpp"
 #include "multiprocess.hpp"
-#include "net/swarm_link.hpp"
 #include "protocol/wire.hpp"
 
 namespace dsswarm::mp {
@@ -27,7 +26,7 @@ namespace {
 class TransferWatch {
  public:
   TransferWatch(int domain, const std::string& swarm, const std::string& inbox, std::string sender)
-      : participant_(config(domain)), link_(participant_, link_config(swarm, inbox)), sender_(std::move(sender)) {}
+      : tap_(domain, swarm, inbox), sender_(std::move(sender)) {}
 
   // Waits for such a chunk; then calls `act` at once and counts, for `after`,
   // the chunks of that transfer that still arrive.
@@ -42,7 +41,7 @@ class TransferWatch {
     const auto until = std::chrono::steady_clock::now() + timeout;
     auto stop_counting = until;
     while (std::chrono::steady_clock::now() < (seen ? stop_counting : until)) {
-      for (const std::vector<std::uint8_t>& bytes : link_.receive(20ms)) {
+      for (const std::vector<std::uint8_t>& bytes : tap_.link.receive(20ms)) {
         const auto chunk = chunk_of(bytes);
         if (!chunk) continue;
         if (!seen && chunk->count > 1) {
@@ -57,18 +56,6 @@ class TransferWatch {
   }
 
  private:
-  static net::ParticipantConfig config(int domain) {
-    net::ParticipantConfig c;
-    c.domain_id = static_cast<std::uint32_t>(domain);
-    c.interface = "lo";
-    return c;
-  }
-  static net::SwarmLinkConfig link_config(const std::string& swarm, const std::string& inbox) {
-    net::SwarmLinkConfig c;
-    c.name = inbox;
-    c.partition = net::swarm_partition(swarm);
-    return c;
-  }
   std::optional<protocol::Chunk> chunk_of(const std::vector<std::uint8_t>& bytes) const {
     try {
       const protocol::Message m = protocol::decode(bytes);
@@ -79,8 +66,7 @@ class TransferWatch {
     return std::nullopt;
   }
 
-  net::Participant participant_;
-  net::DdsSwarmLink link_;
+  SwarmTap tap_;
   std::string sender_;
 };
 

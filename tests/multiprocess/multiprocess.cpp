@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "net/net_test_util.hpp"
+#include "protocol/wire.hpp"
 
 namespace dsswarm::mp {
 
@@ -77,6 +78,38 @@ std::vector<std::string> agent_args(const SimAgent& a) {
 
 double unix_in(double seconds) {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + seconds;
+}
+
+namespace {
+
+net::ParticipantConfig loopback(int domain) {
+  net::ParticipantConfig c;
+  c.domain_id = static_cast<std::uint32_t>(domain);
+  c.interface = "lo";
+  return c;
+}
+
+net::SwarmLinkConfig tap_config(const std::string& swarm, const std::string& name) {
+  net::SwarmLinkConfig c;
+  c.name = name;
+  c.partition = net::swarm_partition(swarm);
+  return c;
+}
+
+}  // namespace
+
+SwarmTap::SwarmTap(int domain, const std::string& swarm, const std::string& name)
+    : participant(loopback(domain)), link(participant, tap_config(swarm, name)) {}
+
+bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < until)
+    for (const std::vector<std::uint8_t>& bytes : tap.link.receive(100ms)) try {
+        const protocol::Message m = protocol::decode(bytes);
+        if (m.header.sender == robot && std::holds_alternative<protocol::Heartbeat>(m.body)) return true;
+      } catch (const protocol::ProtocolError&) {
+      }
+  return false;
 }
 
 nlohmann::json read_json(const fs::path& path) {

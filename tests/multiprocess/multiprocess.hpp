@@ -18,6 +18,7 @@
 
 #include "apps/process_group.hpp"
 #include "io/trajectory/tum.hpp"
+#include "net/swarm_link.hpp"
 
 namespace dsswarm::mp {
 
@@ -70,6 +71,17 @@ std::vector<std::string> agent_args(const SimAgent& a);
 
 // Unix time `seconds` from now (the robots' common clock 0).
 double unix_in(double seconds);
+
+// A plain DDS participant of the test on a swarm's topics (loopback,
+// unsecured): `name`'s inbox and the heartbeats, as a robot would hear them
+// (DDS hands every matched reader its own copy), and sends to any robot.
+struct SwarmTap {
+  SwarmTap(int domain, const std::string& swarm, const std::string& name);
+  net::Participant participant;
+  net::DdsSwarmLink link;
+};
+// Waits until a heartbeat from `robot` arrives on `tap`.
+bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::milliseconds timeout);
 
 nlohmann::json read_json(const fs::path& path);
 // Names of the origins of the layers a robot's stats.json says it holds.

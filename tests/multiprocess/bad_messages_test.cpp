@@ -1,0 +1,108 @@
+// A test publisher (a plain DDS participant, "mallory") writes malformed,
+// truncated, oversized, wrong-version, non-finite, misdirected and replayed
+// swarm messages into a running robot's inbox: every one is refused and
+// counted by reason in its stats.json, and the robot goes on mapping and
+// merging with its honest peer as if nothing had happened.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "apps/sim_swarm_run.hpp"
+#include "multiprocess.hpp"
+#include "protocol/gate.hpp"
+#include "protocol/wire.hpp"
+
+namespace dsswarm::mp {
+namespace {
+
+// The bad messages, each with the reason the robot's gate files it under.
+std::vector<std::pair<std::string, std::vector<std::uint8_t>>> bad_messages(protocol::MessageStamper& mallory,
+                                                                            const std::string& victim) {
+  const auto valid = [&](protocol::Body body) { return protocol::encode(mallory.stamp(victim, std::move(body))); };
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> out;
+  out.push_back({"malformed", std::vector<std::uint8_t>(100, 0xff)});  // garbage
+  std::vector<std::uint8_t> cut = valid(protocol::Decline{9001, "cut short"});
+  cut.resize(cut.size() / 2);
+  out.push_back({"malformed", cut});  // truncated
+  protocol::Chunk huge{9002, 0, 1, 2u << 20, 0, std::vector<std::uint8_t>(2u << 20, 0xab)};
+  out.push_back({"malformed", valid(huge)});  // beyond the 1 MiB message limit
+  std::vector<std::uint8_t> version = valid(protocol::Decline{9003, "from the future"});
+  version[4] = 99;  // u16 protocol version after the magic
+  out.push_back({"malformed", version});
+  protocol::Offer nan_offer;
+  nan_offer.encounter = 9004;
+  nan_offer.pose = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+  out.push_back({"malformed", valid(nan_offer)});  // non-finite pose (checksum fine)
+  std::vector<std::uint8_t> flipped = valid(protocol::Decline{9005, "bit flip"});
+  flipped[flipped.size() / 2] ^= 0x10;
+  out.push_back({"malformed", flipped});  // checksum mismatch
+  out.push_back({"misdirected", protocol::encode(mallory.stamp("someone_else", protocol::Decline{9006, "not yours"}))});
+  const std::vector<std::uint8_t> once = valid(protocol::Decline{9007, "once"});
+  out.push_back({"", once});  // accepted (a decline of no open encounter: ignored)
+  out.push_back({"replayed", once});
+  out.push_back({"replayed", once});
+  return out;
+}
+
+TEST(MultiProcessFaults, BadMessagesAreRefusedAndCountedTheRobotMapsAndMergesOn) {
+  Rig rig;
+  const int domain = test_domain();
+  const std::string swarm = fmt::format("bad{}", getpid());
+  const fs::path config = rig.dir() / "config.json";
+  std::ofstream(config) << R"({"swarm": {"exchange_timeout": 10}})";
+  const double start_at = unix_in(3.0);
+  for (int k = 1; k <= 2; ++k) {
+    SimAgent a;
+    a.name = fmt::format("robot{}", k);
+    a.robot = k;
+    a.robots = 2;
+    a.start_at = start_at;
+    a.domain = domain;
+    a.out = rig.dir() / a.name;
+    a.extra = {"--swarm", swarm, "--config", config.string(), "--linger", "3"};
+    rig.start(a.name, agent_args(a));
+  }
+  SwarmTap tap(domain, swarm, "mallory");
+  ASSERT_TRUE(wait_for_heartbeat(tap, "robot1", 30s)) << "robot1 never came up";
+  std::map<std::string, std::uint64_t> expected;
+  protocol::MessageStamper mallory("mallory", 7);
+  // Twice: before and while the robots map and meet.
+  for (int round = 0; round < 2; ++round) {
+    for (const auto& [reason, bytes] : bad_messages(mallory, "robot1")) {
+      ASSERT_TRUE(tap.link.send("robot1", bytes)) << "could not send to robot1's inbox";
+      if (!reason.empty()) ++expected[reason];
+    }
+    std::this_thread::sleep_for(5s);
+  }
+
+  for (std::size_t p = 0; p < 2; ++p) EXPECT_EQ(rig.wait(p, 90s), 0) << "robot" << p + 1;
+  const SimSwarmRun sim = simulate_swarm_run({2, 1, 1, 3.0});
+  const fs::path r1 = rig.dir() / "robot1", r2 = rig.dir() / "robot2";
+  const nlohmann::json s1 = read_json(r1 / "stats.json"), s2 = read_json(r2 / "stats.json");
+  using Counts = std::map<std::string, std::uint64_t>;
+  EXPECT_EQ(s1.at("messages_rejected").get<Counts>(), expected) << s1.at("messages_rejected");
+  EXPECT_TRUE(s2.at("messages_rejected").empty()) << s2.at("messages_rejected");
+  // Mapping went on: every scan processed or counted as skipped, a pose for each.
+  expect_complete_outputs(r1, sim.streams[0].scans.size());
+  expect_complete_outputs(r2, sim.streams[1].scans.size());
+  // ... and the honest pair merged: an encounter accepted on both sides, each holding the other's map.
+  const auto o1 = outcomes_by_id(r1 / "encounters.json"), o2 = outcomes_by_id(r2 / "encounters.json");
+  std::size_t both = 0;
+  for (const auto& [id, o] : o1)
+    if (o.at("end") == "accepted" && o2.count(id) && o2.at(id).at("end") == "accepted") ++both;
+  EXPECT_GE(both, 1u);
+  for (const auto& [stats, other] : {std::pair{&s1, "robot2"}, std::pair{&s2, "robot1"}}) {
+    const std::vector<std::string> knows = known_origins(*stats);
+    EXPECT_NE(std::find(knows.begin(), knows.end(), other), knows.end()) << stats->at("name") << " lacks " << other;
+  }
+  std::cout << "robot1 refused " << s1.at("messages_rejected") << "; " << both << " encounters accepted by both\n";
+}
+
+}  // namespace
+}  // namespace dsswarm::mp
