@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <set>
 
 #include "agent/agent_files.hpp"
 #include "agent/checkpoint.hpp"
@@ -260,7 +261,14 @@ void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, do
 }
 
 void AgentRuntime::flush_engine() {
-  for (const protocol::Outgoing& out : engine_->take_outbox()) link_.send(out.recipient, out.bytes);
+  std::set<std::string> unreachable;
+  for (const protocol::Outgoing& out : engine_->take_outbox())
+    if (!unreachable.contains(out.recipient) && !link_.send(out.recipient, out.bytes)) unreachable.insert(out.recipient);
+  // An exchange that lost a message cannot finish: end it now rather than
+  // hold a slot until it times out.
+  for (const std::string& peer : unreachable)
+    engine_->drop_peer(peer, fmt::format("{} cannot be reached: a message to it was not delivered (gone, or not authorized)", peer),
+                       swarm_now());
   for (protocol::EncounterOutcome& o : engine_->take_outcomes()) {
     using End = protocol::EncounterOutcome::End;
     if (o.end == End::accepted || o.end == End::rejected) ++decided_;

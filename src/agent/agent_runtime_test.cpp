@@ -203,6 +203,32 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   EXPECT_EQ(runtime.report().status.scans_processed, 30u);
 }
 
+// A peer nobody can reach (no reader of its inbox: gone, or not
+// authorized): the encounter ends at once, it does not hold a slot until
+// the exchange times out.
+TEST(AgentRuntime, AnEncounterWithAPeerThatCannotBeReachedEndsAtOnce) {
+  const fs::path out = fresh_dir("unreachable");
+  auto bus = std::make_shared<protocol::MemoryBus>();
+  const AgentStream s = two_robots()[0];
+  PacedFeed feed(s.scans, s.clock, paced(3.0, 64));
+  auto link = bus->join("a");
+  AgentOptions o = options_for("a", out);
+  o.linger = 0.5;
+  AgentRuntime runtime(o, feed, *link);
+  std::thread ghost_event([&] {
+    std::this_thread::sleep_for(300ms);  // after a first scan
+    runtime.raise_proximity({"a", "ghost", 5});
+  });
+  std::atomic<bool> stop{false};
+  runtime.run(stop);
+  ghost_event.join();
+  const AgentReport r = runtime.report();
+  ASSERT_EQ(r.outcomes.size(), 1u);
+  EXPECT_EQ(r.outcomes[0].end, protocol::EncounterOutcome::End::abandoned);
+  EXPECT_NE(r.outcomes[0].reason.find("cannot be reached"), std::string::npos) << r.outcomes[0].reason;
+  EXPECT_LT(r.outcomes[0].ended - r.outcomes[0].started, 1.0);
+}
+
 // A log or simulated run restarted from its start after a crash (`agent
 // --sim/--log --resume`): the scans the checkpoint holds are passed over,
 // the trajectory goes on in time order.
