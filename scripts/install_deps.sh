@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
   cyclonedds-dev cyclonedds-tools libssl-dev
+  iproute2 nftables  # the packet-loss tests and scripts/fault_table.sh (network namespaces, loss)
 )
 missing=()
 for p in "${packages[@]}"; do

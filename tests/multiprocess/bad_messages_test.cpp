@@ -68,7 +68,7 @@ TEST(MultiProcessFaults, BadMessagesAreRefusedAndCountedTheRobotMapsAndMergesOn)
     a.extra = {"--swarm", swarm, "--config", config.string(), "--linger", "3"};
     rig.start(a.name, agent_args(a));
   }
-  SwarmTap tap(domain, swarm, "mallory");
+  SwarmTap tap(domain, net::swarm_partition(swarm), "mallory");
   ASSERT_TRUE(wait_for_heartbeat(tap, "robot1", 30s)) << "robot1 never came up";
   std::map<std::string, std::uint64_t> expected;
   protocol::MessageStamper mallory("mallory", 7);

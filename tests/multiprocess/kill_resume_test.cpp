@@ -26,7 +26,7 @@ namespace {
 class TransferWatch {
  public:
   TransferWatch(int domain, const std::string& swarm, const std::string& inbox, std::string sender)
-      : tap_(domain, swarm, inbox), sender_(std::move(sender)) {}
+      : tap_(domain, net::swarm_partition(swarm), inbox), sender_(std::move(sender)) {}
 
   // Waits for such a chunk; then calls `act` at once and counts, for `after`,
   // the chunks of that transfer that still arrive.

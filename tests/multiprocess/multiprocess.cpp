@@ -34,6 +34,10 @@ Rig::~Rig() {
 std::size_t Rig::start(const std::string& log, const std::vector<std::string>& args) {
   std::vector<std::string> argv{DSSWARM_CLI};
   argv.insert(argv.end(), args.begin(), args.end());
+  return start_raw(log, argv);
+}
+
+std::size_t Rig::start_raw(const std::string& log, const std::vector<std::string>& argv) {
   logs_.push_back(log);
   return group_.start(argv, dir_ / "logs" / (log + ".log"));
 }
@@ -66,7 +70,7 @@ std::vector<std::string> agent_args(const SimAgent& a) {
   std::vector<std::string> args{"agent", "--name", a.name, "--out", a.out.string(), "--sim", "1", "--robot",
                                 std::to_string(a.robot), "--robots", std::to_string(a.robots), "--rate",
                                 fmt::format("{}", a.rate), "--start-at", fmt::format("{:.6f}", a.start_at),
-                                "--interface", "lo", "--no-ros-output"};
+                                "--interface", a.interface, "--no-ros-output"};
   if (a.keys.empty()) {
     args.insert(args.end(), {"--swarm-domain", std::to_string(a.domain)});
   } else {
@@ -89,17 +93,17 @@ net::ParticipantConfig loopback(int domain) {
   return c;
 }
 
-net::SwarmLinkConfig tap_config(const std::string& swarm, const std::string& name) {
+net::SwarmLinkConfig tap_config(const std::string& partition, const std::string& name) {
   net::SwarmLinkConfig c;
   c.name = name;
-  c.partition = net::swarm_partition(swarm);
+  c.partition = partition;
   return c;
 }
 
 }  // namespace
 
-SwarmTap::SwarmTap(int domain, const std::string& swarm, const std::string& name)
-    : participant(loopback(domain)), link(participant, tap_config(swarm, name)) {}
+SwarmTap::SwarmTap(int domain, const std::string& partition, const std::string& name)
+    : participant(loopback(domain)), link(participant, tap_config(partition, name)) {}
 
 bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::milliseconds timeout) {
   const auto until = std::chrono::steady_clock::now() + timeout;

@@ -41,6 +41,8 @@ class Rig {
   const fs::path& dir() const { return dir_; }
   // Starts `dsswarm args...`, its output in dir()/logs/<log>.log.
   std::size_t start(const std::string& log, const std::vector<std::string>& args);
+  // Starts `argv` as it is (argv[0] a path), e.g. `ip netns exec NS dsswarm ...`.
+  std::size_t start_raw(const std::string& log, const std::vector<std::string>& argv);
   ProcessGroup& group() { return group_; }
   // The exit status, or a test failure (with the log's tail) after `timeout`.
   int wait(std::size_t process, std::chrono::milliseconds timeout);
@@ -63,6 +65,7 @@ struct SimAgent {
   double rate = 8.0;
   double start_at = 0.0;  // unix time of clock 0
   int domain = 0;
+  std::string interface = "lo";
   fs::path out;
   fs::path keys;                // secured swarm: the keys directory
   std::vector<std::string> extra;
@@ -72,11 +75,12 @@ std::vector<std::string> agent_args(const SimAgent& a);
 // Unix time `seconds` from now (the robots' common clock 0).
 double unix_in(double seconds);
 
-// A plain DDS participant of the test on a swarm's topics (loopback,
-// unsecured): `name`'s inbox and the heartbeats, as a robot would hear them
+// A plain DDS participant of the test on the swarm topics of a partition
+// (net::swarm_partition(id); "" for a secured swarm's domain), loopback,
+// unsecured: `name`'s inbox and the heartbeats, as a robot would hear them
 // (DDS hands every matched reader its own copy), and sends to any robot.
 struct SwarmTap {
-  SwarmTap(int domain, const std::string& swarm, const std::string& name);
+  SwarmTap(int domain, const std::string& partition, const std::string& name);
   net::Participant participant;
   net::DdsSwarmLink link;
 };
