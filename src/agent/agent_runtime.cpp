@@ -40,7 +40,12 @@ AgentOptions resolved(AgentOptions o) {
 std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, std::uint64_t& scans_before,
                                        std::optional<double>& resumed_at, Trajectory& trajectory) {
   const SlamConfig slam = agent_slam_config(o.swarm.slam, o.name);
-  if (!o.resume) return std::make_unique<SwarmAgent>(o.name, slam);
+  if (!o.resume) {
+    if (const auto previous = set_aside_checkpoint(o.out))
+      spdlog::warn("{}: starting afresh (no --resume): the checkpoint of the earlier run is kept in {}", o.name,
+                   previous->string());
+    return std::make_unique<SwarmAgent>(o.name, slam);
+  }
   Checkpoint c = read_checkpoint(o.out, o.name);
   spdlog::info("{}: resuming from {} ({} scans, {} layers, pose {:.2f} {:.2f} {:.2f})", o.name, o.out.string(),
                c.scans_processed, c.snapshot.layers.size(), c.pose.x, c.pose.y, c.pose.theta);

@@ -261,6 +261,30 @@ TEST(AgentRuntime, ResumedOnTheWholeRunAgainMapsOnlyWhatTheCheckpointLacks) {
   EXPECT_EQ(r.status.scans_processed, 30u);
 }
 
+// Started again without --resume: the earlier run's checkpoint is not
+// overwritten, it moves to previous/ (and --resume from there still works).
+TEST(AgentRuntime, AFreshStartKeepsTheEarlierCheckpointAside) {
+  const fs::path out = fresh_dir("fresh_again");
+  auto bus = std::make_shared<protocol::MemoryBus>();
+  const AgentStream s = two_robots()[0];
+  auto run_once = [&](std::size_t scans) {
+    PacedFeed feed({s.scans.begin(), s.scans.begin() + static_cast<long>(scans)},
+                   {s.clock.begin(), s.clock.begin() + static_cast<long>(scans)}, paced(5.0, 64));
+    auto link = bus->join("a");
+    AgentOptions o = options_for("a", out);
+    o.linger = 0.0;
+    AgentRuntime runtime(o, feed, *link);
+    std::atomic<bool> stop{false};
+    runtime.run(stop);
+  };
+  run_once(20);
+  run_once(5);
+  EXPECT_EQ(read_checkpoint(out, "a").trajectory.size(), 5u);
+  const Checkpoint earlier = read_checkpoint(out / "previous", "a");
+  EXPECT_EQ(earlier.scans_processed, 20u);
+  EXPECT_EQ(earlier.trajectory.size(), 20u);
+}
+
 // A link whose messages to one robot are held up (a DDS writer waiting for
 // that robot's reader) until released: the swarm thread is busy meanwhile.
 class SlowLink : public protocol::SwarmLink {

@@ -67,4 +67,14 @@ Checkpoint read_checkpoint(const fs::path& dir, const std::string& name) {
   return c;
 }
 
+std::optional<fs::path> set_aside_checkpoint(const fs::path& dir) {
+  if (!has_checkpoint(dir)) return std::nullopt;
+  const fs::path previous = dir / "previous";
+  fs::remove_all(previous);
+  fs::create_directories(previous);
+  for (const fs::path& f : {state_file(dir), map_file(dir), trajectory_file(dir)})
+    if (fs::exists(f)) fs::rename(f, previous / f.filename());
+  return previous;
+}
+
 }  // namespace dsswarm::agent
