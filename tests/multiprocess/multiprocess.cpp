@@ -6,6 +6,7 @@
 #include <deque>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -114,6 +115,34 @@ bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::mi
       } catch (const protocol::ProtocolError&) {
       }
   return false;
+}
+
+std::vector<std::pair<std::string, std::vector<std::uint8_t>>> bad_messages(protocol::MessageStamper& mallory,
+                                                                            const std::string& victim) {
+  const auto valid = [&](protocol::Body body) { return protocol::encode(mallory.stamp(victim, std::move(body))); };
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> out;
+  out.push_back({"malformed", std::vector<std::uint8_t>(100, 0xff)});  // garbage
+  std::vector<std::uint8_t> cut = valid(protocol::Decline{9001, "cut short"});
+  cut.resize(cut.size() / 2);
+  out.push_back({"malformed", cut});  // truncated
+  protocol::Chunk huge{9002, 0, 1, 2u << 20, 0, std::vector<std::uint8_t>(2u << 20, 0xab)};
+  out.push_back({"malformed", valid(huge)});  // beyond the 1 MiB message limit
+  std::vector<std::uint8_t> version = valid(protocol::Decline{9003, "from the future"});
+  version[4] = 99;  // u16 protocol version after the magic
+  out.push_back({"malformed", version});
+  protocol::Offer nan_offer;
+  nan_offer.encounter = 9004;
+  nan_offer.pose = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+  out.push_back({"malformed", valid(nan_offer)});  // non-finite pose (checksum fine)
+  std::vector<std::uint8_t> flipped = valid(protocol::Decline{9005, "bit flip"});
+  flipped[flipped.size() / 2] ^= 0x10;
+  out.push_back({"malformed", flipped});  // checksum mismatch
+  out.push_back({"misdirected", protocol::encode(mallory.stamp("someone_else", protocol::Decline{9006, "not yours"}))});
+  const std::vector<std::uint8_t> once = valid(protocol::Decline{9007, "once"});
+  out.push_back({"", once});  // accepted (a decline of no open encounter: ignored)
+  out.push_back({"replayed", once});
+  out.push_back({"replayed", once});
+  return out;
 }
 
 nlohmann::json read_json(const fs::path& path) {

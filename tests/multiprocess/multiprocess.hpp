@@ -19,6 +19,7 @@
 #include "apps/process_group.hpp"
 #include "io/trajectory/tum.hpp"
 #include "net/swarm_link.hpp"
+#include "protocol/gate.hpp"
 
 namespace dsswarm::mp {
 
@@ -84,6 +85,13 @@ struct SwarmTap {
   net::Participant participant;
   net::DdsSwarmLink link;
 };
+// Malformed, truncated, oversized, wrong-version, non-finite, corrupt,
+// misdirected and replayed messages for `victim` (and one valid one), each
+// with the reason its gate files it under ("" for the valid one). Sequences
+// continue `sender`'s: call again for another round.
+std::vector<std::pair<std::string, std::vector<std::uint8_t>>> bad_messages(protocol::MessageStamper& sender,
+                                                                            const std::string& victim);
+
 // Waits until a heartbeat from `robot` arrives on `tap`.
 bool wait_for_heartbeat(SwarmTap& tap, const std::string& robot, std::chrono::milliseconds timeout);
 
