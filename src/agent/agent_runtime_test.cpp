@@ -285,6 +285,40 @@ TEST(AgentRuntime, AFreshStartKeepsTheEarlierCheckpointAside) {
   EXPECT_EQ(earlier.trajectory.size(), 20u);
 }
 
+// Killed while writing a checkpoint, after the poses but before
+// checkpoint.json: the resumed robot goes on from the newer poses, not from
+// the older state file's pose and count.
+TEST(AgentRuntime, ACheckpointTornByAKillResumesFromItsNewestPoses) {
+  const fs::path out = fresh_dir("torn");
+  Checkpoint c;
+  c.name = "a";
+  c.snapshot.sender = "a";
+  MapLayer own;
+  own.origin = "a";
+  own.version = 1;
+  Rng rng(1);
+  own.map = std::make_shared<MultiResMap>(test::map_from(test::l_shaped_office(), {{2.0, 2.0, 0.0}}, {2.0, 2.0, 0.0}, rng));
+  c.snapshot.layers.push_back(own);
+  for (int i = 0; i < 10; ++i) c.trajectory.push_back({100.0 + i, {0.1 * i, 0.0, 0.0}});
+  c.pose = c.trajectory.back().pose;
+  c.stamp = c.trajectory.back().timestamp;
+  c.scans_processed = 10;
+  write_checkpoint(out, c);
+  const std::string older_state = [&] {
+    std::ifstream in(out / "checkpoint.json");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (int i = 10; i < 14; ++i) c.trajectory.push_back({100.0 + i, {0.1 * i, 0.0, 0.0}});
+  c.pose = c.trajectory.back().pose;
+  c.scans_processed = 14;
+  write_checkpoint(out, c);
+  std::ofstream(out / "checkpoint.json") << older_state;  // the kill came before the state file
+  const Checkpoint r = read_checkpoint(out, "a");
+  EXPECT_EQ(r.scans_processed, 14u);
+  EXPECT_DOUBLE_EQ(r.stamp, 113.0);
+  EXPECT_NEAR(r.pose.x, 1.3, 1e-9);
+}
+
 // A link whose messages to one robot are held up (a DDS writer waiting for
 // that robot's reader) until released: the swarm thread is busy meanwhile.
 class SlowLink : public protocol::SwarmLink {
