@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <deque>
 #include <fstream>
@@ -39,7 +40,7 @@ std::size_t Rig::start(const std::string& log, const std::vector<std::string>& a
 }
 
 std::size_t Rig::start_raw(const std::string& log, const std::vector<std::string>& argv) {
-  logs_.push_back(log);
+  if (std::find(logs_.begin(), logs_.end(), log) == logs_.end()) logs_.push_back(log);  // a log reused: appended
   return group_.start(argv, dir_ / "logs" / (log + ".log"));
 }
 

@@ -41,6 +41,7 @@ TEST(MultiProcessFaults, RobotsWithoutAValidCertificateNeverReachTheSwarm) {
   const fs::path config = rig.dir() / "config.json";
   std::ofstream(config) << R"({"swarm": {"exchange_timeout": 10}})";
   const double start_at = unix_in(4.0);
+  std::vector<std::size_t> agents;
   for (int k = 1; k <= 4; ++k) {
     SimAgent a;
     a.name = fmt::format("robot{}", k);
@@ -50,7 +51,7 @@ TEST(MultiProcessFaults, RobotsWithoutAValidCertificateNeverReachTheSwarm) {
     a.out = rig.dir() / a.name;
     a.keys = k == 3 ? other_keys : k == 4 ? robot4_keys : swarm_keys;
     a.extra = {"--config", config.string(), "--linger", "3"};
-    rig.start(a.name, agent_args(a));
+    agents.push_back(rig.start(a.name, agent_args(a)));
   }
 
   // No certificate at all: a plain participant on the secured domain, where
@@ -67,7 +68,7 @@ TEST(MultiProcessFaults, RobotsWithoutAValidCertificateNeverReachTheSwarm) {
     EXPECT_EQ(heard, 0u) << "an unsecured participant heard the secured swarm";
   }
 
-  for (std::size_t p = 0; p < 4; ++p) EXPECT_EQ(rig.wait(rig.group().size() - 4 + p, 90s), 0) << "robot" << p + 1;
+  for (std::size_t p = 0; p < agents.size(); ++p) EXPECT_EQ(rig.wait(agents[p], 90s), 0) << "robot" << p + 1;
   std::map<std::string, nlohmann::json> stats;
   std::map<std::string, std::map<std::uint64_t, nlohmann::json>> outcomes;
   for (int k = 1; k <= 4; ++k) {
