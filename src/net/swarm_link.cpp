@@ -31,7 +31,6 @@ struct DdsSwarmLink::InboxWriter {
   Topic<SwarmPacket> topic;
   Writer<SwarmPacket> writer;
   std::uint64_t last_use = 0;
-  bool waited = false;  // for a reader since it last had one
 };
 
 DdsSwarmLink::DdsSwarmLink(Participant& participant, const SwarmLinkConfig& config)
@@ -83,15 +82,7 @@ bool DdsSwarmLink::send(const std::string& recipient, std::span<const std::uint8
   if (!is_valid_agent_name(recipient)) return false;
   std::lock_guard lock(writers_mutex_);
   InboxWriter& w = writer_for(recipient);
-  if (w.writer.matched() > 0) {
-    w.waited = false;
-  } else {
-    // Once per unmatched spell: a robot that cannot be reached (not
-    // authorized, gone) must not hold up every message to it for match_wait.
-    if (w.waited) return false;
-    w.waited = true;
-    if (!w.writer.wait_for_readers(1, config_.match_wait)) return false;
-  }
+  if (w.writer.matched() == 0 && !w.writer.wait_for_readers(1, config_.match_wait)) return false;
   return w.writer.try_write(packet);
 }
 

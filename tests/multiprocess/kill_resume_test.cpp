@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include "apps/sim_swarm_run.hpp"
@@ -90,10 +91,13 @@ TEST(MultiProcessFaults, KillMidTransferThenResumeFromTheCheckpoint) {
     a.extra.insert(a.extra.end(), extra.begin(), extra.end());
     return rig.start(a.name + (extra.empty() ? "" : "_resumed"), agent_args(a));
   };
-  TransferWatch watch(domain, swarm, "robot3", "robot1");
+  // A second reader of robot3's inbox, gone once it has seen what it waits for:
+  // a reader that stops taking holds up robot3's senders (reliable, keep-all).
+  auto watch = std::make_unique<TransferWatch>(domain, swarm, "robot3", "robot1");
   for (int k = 1; k <= 3; ++k) process[fmt::format("robot{}", k)] = agent(k, {});
 
-  const auto seen = watch.watch([&] { rig.group().signal(process["robot1"], SIGKILL); }, 60s, 1s);
+  const auto seen = watch->watch([&] { rig.group().signal(process["robot1"], SIGKILL); }, 60s, 1s);
+  watch.reset();
   ASSERT_TRUE(seen) << "no snapshot transfer from robot1 to robot3 within 60 s";
   EXPECT_EQ(rig.wait(process["robot1"], 5s), 128 + SIGKILL);
   ASSERT_LT(seen->arrived, seen->count) << "the kill came after the whole transfer had been sent";
