@@ -59,15 +59,10 @@ TEST(MultiProcessFaults, BadMessagesAreRefusedAndCountedTheRobotMapsAndMergesOn)
   expect_complete_outputs(r1, sim.streams[0].scans.size());
   expect_complete_outputs(r2, sim.streams[1].scans.size());
   // ... and the honest pair merged: an encounter accepted on both sides, each holding the other's map.
-  const auto o1 = outcomes_by_id(r1 / "encounters.json"), o2 = outcomes_by_id(r2 / "encounters.json");
-  std::size_t both = 0;
-  for (const auto& [id, o] : o1)
-    if (o.at("end") == "accepted" && o2.count(id) && o2.at(id).at("end") == "accepted") ++both;
+  const std::size_t both = accepted_by_both(r1, r2);
   EXPECT_GE(both, 1u);
-  for (const auto& [stats, other] : {std::pair{&s1, "robot2"}, std::pair{&s2, "robot1"}}) {
-    const std::vector<std::string> knows = known_origins(*stats);
-    EXPECT_NE(std::find(knows.begin(), knows.end(), other), knows.end()) << stats->at("name") << " lacks " << other;
-  }
+  EXPECT_TRUE(holds(s1, "robot2")) << "robot1 lacks robot2's map";
+  EXPECT_TRUE(holds(s2, "robot1")) << "robot2 lacks robot1's map";
   std::cout << "robot1 refused " << s1.at("messages_rejected") << "; " << both << " encounters accepted by both\n";
 }
 

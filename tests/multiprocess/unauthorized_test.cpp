@@ -76,10 +76,7 @@ TEST(MultiProcessFaults, RobotsWithoutAValidCertificateNeverReachTheSwarm) {
     stats[name] = read_json(rig.dir() / name / "stats.json");
     outcomes[name] = outcomes_by_id(rig.dir() / name / "encounters.json");
   }
-  auto knows = [&](const std::string& holder, const std::string& origin) {
-    const std::vector<std::string> o = known_origins(stats.at(holder));
-    return std::find(o.begin(), o.end(), origin) != o.end();
-  };
+  auto knows = [&](const std::string& holder, const std::string& origin) { return holds(stats.at(holder), origin); };
   std::size_t tried = 0;  // encounters the valid robots opened with an unauthorized one
   for (const char* valid : {"robot1", "robot2"}) {
     for (const char* outsider : {"robot3", "robot4"}) {
@@ -96,10 +93,7 @@ TEST(MultiProcessFaults, RobotsWithoutAValidCertificateNeverReachTheSwarm) {
   }
   EXPECT_GT(tried, 0u) << "the scenario never brought a valid robot near an unauthorized one";
   // The valid pair merged, both ways.
-  std::size_t both = 0;
-  for (const auto& [id, o] : outcomes.at("robot1"))
-    if (o.at("end") == "accepted" && outcomes.at("robot2").count(id) && outcomes.at("robot2").at(id).at("end") == "accepted")
-      ++both;
+  const std::size_t both = accepted_by_both(rig.dir() / "robot1", rig.dir() / "robot2");
   EXPECT_GE(both, 1u);
   EXPECT_TRUE(knows("robot1", "robot2"));
   EXPECT_TRUE(knows("robot2", "robot1"));
