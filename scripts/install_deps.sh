@@ -12,6 +12,7 @@ packages=(
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev
   cyclonedds-dev cyclonedds-tools libssl-dev
   clang libclang-rt-14-dev llvm  # sanitizer build + libFuzzer; llvm-symbolizer for readable reports
+  iproute2 nftables  # the packet-loss tests and scripts/fault_table.sh (network namespaces, loss)
   "$@"
 )
 missing=()

@@ -31,6 +31,7 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["scans_received"] = s.scans_received;
   j["scans_processed"] = s.scans_processed;
   j["scans_skipped"] = s.scans_skipped;
+  j["scans_in_checkpoint"] = r.scans_in_checkpoint;
   j["scans_matched"] = a.slam().scans_matched();
   j["scans_held"] = a.slam().scans_held();
   j["matches_rejected"] = a.slam().matches_rejected();

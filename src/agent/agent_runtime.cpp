@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <set>
 
 #include "agent/agent_files.hpp"
 #include "agent/checkpoint.hpp"
@@ -36,13 +37,20 @@ AgentOptions resolved(AgentOptions o) {
   return o;
 }
 
-std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, std::uint64_t& scans_before, Trajectory& trajectory) {
+std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, std::uint64_t& scans_before,
+                                       std::optional<double>& resumed_at, Trajectory& trajectory) {
   const SlamConfig slam = agent_slam_config(o.swarm.slam, o.name);
-  if (!o.resume) return std::make_unique<SwarmAgent>(o.name, slam);
+  if (!o.resume) {
+    if (const auto previous = set_aside_checkpoint(o.out))
+      spdlog::warn("{}: starting afresh (no --resume): the checkpoint of the earlier run is kept in {}", o.name,
+                   previous->string());
+    return std::make_unique<SwarmAgent>(o.name, slam);
+  }
   Checkpoint c = read_checkpoint(o.out, o.name);
   spdlog::info("{}: resuming from {} ({} scans, {} layers, pose {:.2f} {:.2f} {:.2f})", o.name, o.out.string(),
                c.scans_processed, c.snapshot.layers.size(), c.pose.x, c.pose.y, c.pose.theta);
   scans_before = c.scans_processed;
+  if (!c.trajectory.empty()) resumed_at = c.trajectory.back().timestamp;
   trajectory = std::move(c.trajectory);
   return std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose);
 }
@@ -67,7 +75,7 @@ AgentRuntime::AgentRuntime(AgentOptions options, ScanFeed& feed, protocol::Swarm
       triggers_(std::chrono::milliseconds(static_cast<long>(options_.trigger_patience * 1000.0))),
       heartbeats_(options_.name, options_.incarnation) {
   Trajectory trajectory;
-  shared_ = std::make_unique<SharedAgent>(make_agent(options_, scans_before_, trajectory),
+  shared_ = std::make_unique<SharedAgent>(make_agent(options_, scans_before_, resumed_at_, trajectory),
                                           options_.swarm.encounter.locate);
   shared_->restore_trajectory(std::move(trajectory));
   engine_ = std::make_unique<protocol::EncounterEngine>(options_.name, options_.swarm, *shared_, options_.incarnation);
@@ -90,6 +98,12 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
   std::optional<double> exhausted_at;
   while (!stop.load()) {
     if (std::optional<LaserScan> scan = feed_.next(100ms)) {
+      // A log or simulated run played again from its start after a crash:
+      // what the checkpoint holds already is not mapped a second time.
+      if (resumed_at_ && scan->timestamp <= *resumed_at_) {
+        ++scans_in_checkpoint_;
+        continue;
+      }
       after_scan(*scan, shared_->process(*scan));
       continue;
     }
@@ -252,7 +266,14 @@ void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, do
 }
 
 void AgentRuntime::flush_engine() {
-  for (const protocol::Outgoing& out : engine_->take_outbox()) link_.send(out.recipient, out.bytes);
+  std::set<std::string> unreachable;
+  for (const protocol::Outgoing& out : engine_->take_outbox())
+    if (!unreachable.contains(out.recipient) && !link_.send(out.recipient, out.bytes)) unreachable.insert(out.recipient);
+  // An exchange that lost a message cannot finish: end it now rather than
+  // hold a slot until it times out.
+  for (const std::string& peer : unreachable)
+    engine_->drop_peer(peer, fmt::format("{} cannot be reached: a message to it was not delivered (gone, or not authorized)", peer),
+                       swarm_now());
   for (protocol::EncounterOutcome& o : engine_->take_outcomes()) {
     using End = protocol::EncounterOutcome::End;
     if (o.end == End::accepted || o.end == End::rejected) ++decided_;
@@ -328,6 +349,7 @@ AgentReport AgentRuntime::report() const {
   r.merge_latencies_ms = report_.merge_latencies_ms;
   r.outcomes = report_.outcomes;
   r.triggers_late = triggers_late_;
+  r.scans_in_checkpoint = scans_in_checkpoint_.load();
   return r;
 }
 

@@ -69,6 +69,7 @@ struct AgentReport {
   std::vector<double> merge_latencies_ms;      // proximity event → merged map in use
   std::map<std::string, std::uint64_t> rejected_by_reason;
   std::uint64_t triggers_late = 0;
+  std::uint64_t scans_in_checkpoint = 0;  // resumed: scans received again that the checkpoint holds
   std::vector<protocol::EncounterOutcome> outcomes;
 };
 
@@ -114,6 +115,7 @@ class AgentRuntime {
   SteadyClock::time_point started_;
   std::unique_ptr<SharedAgent> shared_;
   std::uint64_t scans_before_ = 0;  // processed in earlier runs (resumed)
+  std::optional<double> resumed_at_;  // stamp of the checkpoint's last pose (resumed)
 
   // Swarm thread state (engine_mutex_).
   mutable std::mutex engine_mutex_;
@@ -150,6 +152,7 @@ class AgentRuntime {
   std::optional<SteadyClock::time_point> last_scan_at_;
   double last_checkpoint_ = 0.0;
   std::atomic<std::uint64_t> processed_{0};
+  std::atomic<std::uint64_t> scans_in_checkpoint_{0};
   std::thread swarm_thread_;
   std::thread heartbeat_thread_;
   std::thread checkpoint_writer_;

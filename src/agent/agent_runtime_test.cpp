@@ -203,6 +203,122 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   EXPECT_EQ(runtime.report().status.scans_processed, 30u);
 }
 
+// A peer nobody can reach (no reader of its inbox: gone, or not
+// authorized): the encounter ends at once, it does not hold a slot until
+// the exchange times out.
+TEST(AgentRuntime, AnEncounterWithAPeerThatCannotBeReachedEndsAtOnce) {
+  const fs::path out = fresh_dir("unreachable");
+  auto bus = std::make_shared<protocol::MemoryBus>();
+  const AgentStream s = two_robots()[0];
+  PacedFeed feed(s.scans, s.clock, paced(3.0, 64));
+  auto link = bus->join("a");
+  AgentOptions o = options_for("a", out);
+  o.linger = 0.5;
+  AgentRuntime runtime(o, feed, *link);
+  std::thread ghost_event([&] {
+    std::this_thread::sleep_for(300ms);  // after a first scan
+    runtime.raise_proximity({"a", "ghost", 5});
+  });
+  std::atomic<bool> stop{false};
+  runtime.run(stop);
+  ghost_event.join();
+  const AgentReport r = runtime.report();
+  ASSERT_EQ(r.outcomes.size(), 1u);
+  EXPECT_EQ(r.outcomes[0].end, protocol::EncounterOutcome::End::abandoned);
+  EXPECT_NE(r.outcomes[0].reason.find("cannot be reached"), std::string::npos) << r.outcomes[0].reason;
+  EXPECT_LT(r.outcomes[0].ended - r.outcomes[0].started, 1.0);
+}
+
+// A log or simulated run restarted from its start after a crash (`agent
+// --sim/--log --resume`): the scans the checkpoint holds are passed over,
+// the trajectory goes on in time order.
+TEST(AgentRuntime, ResumedOnTheWholeRunAgainMapsOnlyWhatTheCheckpointLacks) {
+  const fs::path out = fresh_dir("resume_whole");
+  auto bus = std::make_shared<protocol::MemoryBus>();
+  const AgentStream s = two_robots()[0];
+  {
+    PacedFeed feed({s.scans.begin(), s.scans.begin() + 15}, {s.clock.begin(), s.clock.begin() + 15}, paced(5.0, 64));
+    auto link = bus->join("a");
+    AgentOptions o = options_for("a", out);
+    o.linger = 0.0;
+    AgentRuntime runtime(o, feed, *link);
+    std::atomic<bool> stop{false};
+    runtime.run(stop);
+  }
+  PacedFeed feed(s.scans, s.clock, paced(5.0, 64));
+  auto link = bus->join("a");
+  AgentOptions o = options_for("a", out);
+  o.linger = 0.0;
+  o.resume = true;
+  AgentRuntime runtime(o, feed, *link);
+  std::atomic<bool> stop{false};
+  runtime.run(stop);
+  const Trajectory t = read_tum(out / "trajectory.tum");
+  ASSERT_EQ(t.size(), 30u);
+  for (std::size_t i = 0; i < t.size(); ++i) EXPECT_DOUBLE_EQ(t[i].timestamp, s.scans[i].timestamp) << i;
+  const AgentReport r = runtime.report();
+  EXPECT_EQ(r.scans_in_checkpoint, 15u);
+  EXPECT_EQ(r.status.scans_processed, 30u);
+}
+
+// Started again without --resume: the earlier run's checkpoint is not
+// overwritten, it moves to previous/ (and --resume from there still works).
+TEST(AgentRuntime, AFreshStartKeepsTheEarlierCheckpointAside) {
+  const fs::path out = fresh_dir("fresh_again");
+  auto bus = std::make_shared<protocol::MemoryBus>();
+  const AgentStream s = two_robots()[0];
+  auto run_once = [&](std::size_t scans) {
+    PacedFeed feed({s.scans.begin(), s.scans.begin() + static_cast<long>(scans)},
+                   {s.clock.begin(), s.clock.begin() + static_cast<long>(scans)}, paced(5.0, 64));
+    auto link = bus->join("a");
+    AgentOptions o = options_for("a", out);
+    o.linger = 0.0;
+    AgentRuntime runtime(o, feed, *link);
+    std::atomic<bool> stop{false};
+    runtime.run(stop);
+  };
+  run_once(20);
+  run_once(5);
+  EXPECT_EQ(read_checkpoint(out, "a").trajectory.size(), 5u);
+  const Checkpoint earlier = read_checkpoint(out / "previous", "a");
+  EXPECT_EQ(earlier.scans_processed, 20u);
+  EXPECT_EQ(earlier.trajectory.size(), 20u);
+}
+
+// Killed while writing a checkpoint, after the poses but before
+// checkpoint.json: the resumed robot goes on from the newer poses, not from
+// the older state file's pose and count.
+TEST(AgentRuntime, ACheckpointTornByAKillResumesFromItsNewestPoses) {
+  const fs::path out = fresh_dir("torn");
+  Checkpoint c;
+  c.name = "a";
+  c.snapshot.sender = "a";
+  MapLayer own;
+  own.origin = "a";
+  own.version = 1;
+  Rng rng(1);
+  own.map = std::make_shared<MultiResMap>(test::map_from(test::l_shaped_office(), {{2.0, 2.0, 0.0}}, {2.0, 2.0, 0.0}, rng));
+  c.snapshot.layers.push_back(own);
+  for (int i = 0; i < 10; ++i) c.trajectory.push_back({100.0 + i, {0.1 * i, 0.0, 0.0}});
+  c.pose = c.trajectory.back().pose;
+  c.stamp = c.trajectory.back().timestamp;
+  c.scans_processed = 10;
+  write_checkpoint(out, c);
+  const std::string older_state = [&] {
+    std::ifstream in(out / "checkpoint.json");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (int i = 10; i < 14; ++i) c.trajectory.push_back({100.0 + i, {0.1 * i, 0.0, 0.0}});
+  c.pose = c.trajectory.back().pose;
+  c.scans_processed = 14;
+  write_checkpoint(out, c);
+  std::ofstream(out / "checkpoint.json") << older_state;  // the kill came before the state file
+  const Checkpoint r = read_checkpoint(out, "a");
+  EXPECT_EQ(r.scans_processed, 14u);
+  EXPECT_DOUBLE_EQ(r.stamp, 113.0);
+  EXPECT_NEAR(r.pose.x, 1.3, 1e-9);
+}
+
 // A link whose messages to one robot are held up (a DDS writer waiting for
 // that robot's reader) until released: the swarm thread is busy meanwhile.
 class SlowLink : public protocol::SwarmLink {

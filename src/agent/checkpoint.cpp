@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <fstream>
@@ -64,7 +65,27 @@ Checkpoint read_checkpoint(const fs::path& dir, const std::string& name) {
   if (c.snapshot.sender != name)
     throw InputError(fmt::format("{}: the map is robot '{}''s, not '{}''s", map_file(dir).string(), c.snapshot.sender, name));
   if (fs::exists(trajectory_file(dir))) c.trajectory = read_tum(trajectory_file(dir));
+  // Killed between writing the poses and checkpoint.json: the map and the
+  // poses are the newer checkpoint's, the state file the older one's. Pose,
+  // stamp and count are the last pose's (one pose per scan processed).
+  if (c.trajectory.size() > c.scans_processed) {
+    spdlog::warn("{}: older than {} (the robot stopped while writing a checkpoint): going on from its last pose",
+                 state.string(), trajectory_file(dir).string());
+    c.scans_processed = c.trajectory.size();
+    c.pose = c.trajectory.back().pose;
+    c.stamp = c.trajectory.back().timestamp;
+  }
   return c;
+}
+
+std::optional<fs::path> set_aside_checkpoint(const fs::path& dir) {
+  if (!has_checkpoint(dir)) return std::nullopt;
+  const fs::path previous = dir / "previous";
+  fs::remove_all(previous);
+  fs::create_directories(previous);
+  for (const fs::path& f : {state_file(dir), map_file(dir), trajectory_file(dir)})
+    if (fs::exists(f)) fs::rename(f, previous / f.filename());
+  return previous;
 }
 
 }  // namespace dsswarm::agent

@@ -5,6 +5,7 @@
 // atomically, the map first; DIR/trajectory.tum keeps the poses so far.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "geometry/pose2.hpp"
@@ -27,5 +28,10 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& checkp
 // or belongs to another robot.
 Checkpoint read_checkpoint(const std::filesystem::path& dir, const std::string& name);
 bool has_checkpoint(const std::filesystem::path& dir);
+// A fresh start (no --resume) where an earlier run left a checkpoint: its
+// files (checkpoint.json, checkpoint.dsmap, trajectory.tum) move to
+// DIR/previous/ (replacing what an older one left there) instead of being
+// overwritten. Returns that folder, or nullopt when there was none.
+std::optional<std::filesystem::path> set_aside_checkpoint(const std::filesystem::path& dir);
 
 }  // namespace dsswarm::agent

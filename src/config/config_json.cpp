@@ -247,6 +247,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"chunk_bytes", DSS_SWARM_FIELD(std::size_t, chunk_bytes)},
         {"max_open_encounters", DSS_SWARM_FIELD(std::size_t, max_open_encounters)},
         {"max_pending_confirmations", DSS_SWARM_FIELD(std::size_t, max_pending_confirmations)},
+        {"remembered_encounters", DSS_SWARM_FIELD(std::size_t, remembered_encounters)},
         {"max_transfer_bytes", DSS_SWARM_FIELD(std::size_t, max_transfer_bytes)}}},
   };
   return table;

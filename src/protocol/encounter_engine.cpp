@@ -92,6 +92,15 @@ void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, 
   o.reason = reason;
   o.started = o.ended = now;
   outcomes_.push_back(std::move(o));
+  remember_ended({peer, encounter});
+}
+
+void EncounterEngine::remember_ended(const Key& key) {
+  if (!ended_.insert(key).second) return;
+  ended_order_.push_back(key);
+  if (ended_order_.size() <= config_.remembered_encounters) return;
+  ended_.erase(ended_order_.front());
+  ended_order_.pop_front();
 }
 
 void EncounterEngine::start(const std::string& peer, std::uint64_t encounter, double now) {
@@ -102,6 +111,10 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
   if (peer == self_) return nullptr;
   const Key key{peer, encounter};
   if (auto it = open_.find(key); it != open_.end()) return it->second.get();
+  if (ended_.contains(key)) {  // e.g. a restarted peer offering it again: it ends once
+    send(nullptr, peer, Decline{encounter, fmt::format("encounter {} has ended for {}", encounter, self_)});
+    return nullptr;
+  }
   if (!config_.merge) {
     decline(peer, encounter, EncounterOutcome::Decline::merging_off, "merging is off", now);
     return nullptr;
@@ -313,6 +326,7 @@ void EncounterEngine::finish(const Key& key, EncounterOutcome::End end, std::str
   o.ended = now;
   if (end != EncounterOutcome::End::accepted) o.reason = std::move(reason);
   outcomes_.push_back(std::move(o));
+  remember_ended(key);  // before the erase: `key` may be the map's own
   open_.erase(it);
 }
 

@@ -8,9 +8,11 @@
 // here, and every random seed derives from the pair and the encounter id,
 // so two processes compute exactly what one process would.
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -117,6 +119,7 @@ class EncounterEngine {
                const std::string& reason, double now);
   void finish(const Key& key, EncounterOutcome::End end, std::string reason, double now);
   std::uint64_t seed_for(const Exchange& x) const;
+  void remember_ended(const Key& key);
 
   std::string self_;
   SwarmConfig config_;
@@ -124,6 +127,8 @@ class EncounterEngine {
   MessageStamper stamper_;
   std::map<Key, std::unique_ptr<Exchange>> open_;
   std::map<std::string, PeerState> peers_;
+  std::set<Key> ended_;           // bounded by config_.remembered_encounters,
+  std::deque<Key> ended_order_;   // the oldest forgotten first
   std::vector<Outgoing> outbox_;
   std::vector<EncounterOutcome> outcomes_;
 };

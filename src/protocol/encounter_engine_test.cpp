@@ -213,6 +213,33 @@ TEST(EncounterEngine, APeerThatVanishesMidTransferIsDroppedAndItsPartialSnapshot
   EXPECT_EQ(p.a.merges, 0);  // nothing half-received reached the map
 }
 
+// b is killed mid-encounter and restarted: a has ended that encounter
+// ("b restarted"); the new b, offering it again, is declined: an encounter
+// ends once, encounters.json has one outcome per id.
+TEST(EncounterEngine, AnEncounterThatEndedIsNotRunAgainWithARestartedPeer) {
+  Pair p(unconfirmed());
+  p.ea.start("b", 1, 0.0);
+  p.pump(0.0, [](const Outgoing& out) { return out.recipient != "b"; });  // b is gone
+  p.ea.drop_peer("b", "b restarted", 1.0);
+  ASSERT_EQ(p.ea.take_outcomes().size(), 1u);
+  EncounterEngine b_again("b", unconfirmed(), p.b, 2);
+  MessageGate gate_b_again("b");
+  b_again.start("a", 1, 2.0);
+  for (int round = 0; round < 3; ++round) {
+    for (const Outgoing& out : b_again.take_outbox())
+      if (auto v = p.ga.admit(out.bytes); v.message) p.ea.receive(*v.message, out.bytes.size(), 2.0);
+    for (const Outgoing& out : p.ea.take_outbox())
+      if (auto v = gate_b_again.admit(out.bytes); v.message) b_again.receive(*v.message, out.bytes.size(), 2.0);
+  }
+  EXPECT_TRUE(p.ea.take_outcomes().empty());
+  EXPECT_EQ(p.ea.open_encounters(), 0u);
+  const auto o = b_again.take_outcomes();
+  ASSERT_EQ(o.size(), 1u);
+  EXPECT_EQ(o[0].end, End::declined);
+  EXPECT_NE(o[0].reason.find("has ended"), std::string::npos) << o[0].reason;
+  EXPECT_EQ(p.a.merges, 0);
+}
+
 TEST(EncounterEngine, TransfersBeyondTheMemoryBoundAreAbandoned) {
   SwarmConfig config = unconfirmed();
   config.max_transfer_bytes = std::size_t{1} << 20;

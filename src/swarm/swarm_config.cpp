@@ -12,6 +12,7 @@ void SwarmConfig::validate() const {
   if (!(exchange_timeout > 0.0)) throw ConfigError("swarm.exchange_timeout must be > 0 s");
   if (chunk_bytes < 1024 || chunk_bytes > 512 * 1024) throw ConfigError("swarm.chunk_bytes must be in [1024, 524288]");
   if (max_open_encounters < 1) throw ConfigError("swarm.max_open_encounters must be >= 1");
+  if (remembered_encounters < 1) throw ConfigError("swarm.remembered_encounters must be >= 1");
   if (max_transfer_bytes < (std::size_t{1} << 20)) throw ConfigError("swarm.max_transfer_bytes must be >= 1 MiB");
   if (max_pending_confirmations < 1 || max_pending_confirmations > 64)
     throw ConfigError("swarm.max_pending_confirmations must be in [1, 64]");

@@ -32,6 +32,10 @@ struct SwarmConfig {
   std::size_t chunk_bytes = 60000;      // snapshot bytes per message
   std::size_t max_open_encounters = 16; // at once, with any peers (bounds memory)
   std::size_t max_pending_confirmations = 16;  // per peer, oldest dropped
+  // Encounters that ended (any way) are remembered, the oldest forgotten
+  // beyond this: an encounter ends once, even when a restarted peer offers
+  // the same one again.
+  std::size_t remembered_encounters = 4096;
   // Snapshot bytes held by all incoming transfers together; a transfer that
   // would go beyond is abandoned (many peers at once must not exhaust a
   // small robot's memory). A 100 m × 100 m map travels in ~3 MB.

@@ -167,6 +167,19 @@ std::map<std::uint64_t, nlohmann::json> outcomes_by_id(const fs::path& encounter
   return out;
 }
 
+bool holds(const nlohmann::json& stats, const std::string& origin) {
+  const std::vector<std::string> o = known_origins(stats);
+  return std::find(o.begin(), o.end(), origin) != o.end();
+}
+
+std::size_t accepted_by_both(const fs::path& a, const fs::path& b) {
+  const auto oa = outcomes_by_id(a / "encounters.json"), ob = outcomes_by_id(b / "encounters.json");
+  std::size_t both = 0;
+  for (const auto& [id, o] : oa)
+    if (o.at("end") == "accepted" && ob.count(id) && ob.at(id).at("end") == "accepted") ++both;
+  return both;
+}
+
 bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (!done()) {

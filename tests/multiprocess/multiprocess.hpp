@@ -100,6 +100,10 @@ nlohmann::json read_json(const fs::path& path);
 std::vector<std::string> known_origins(const nlohmann::json& stats);
 // The outcomes in a robot's encounters.json, by encounter id.
 std::map<std::uint64_t, nlohmann::json> outcomes_by_id(const fs::path& encounters_json);
+// Whether a robot's stats.json says it holds `origin`'s map.
+bool holds(const nlohmann::json& stats, const std::string& origin);
+// Encounters that both robots (their output folders) ended as accepted.
+std::size_t accepted_by_both(const fs::path& a, const fs::path& b);
 
 // Polls `done` every 50 ms for up to `timeout`.
 bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout);
