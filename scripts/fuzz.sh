@@ -6,7 +6,7 @@
 # ASan + UBSan with leak detection, then prints a table: target, executions,
 # corpus size, crashes.
 #
-#   scripts/fuzz.sh --smoke               every target for 12 s (CI: scripts/test.sh)
+#   scripts/fuzz.sh --smoke               every target for 8 s (CI: scripts/test.sh)
 #   scripts/fuzz.sh --runs 1000000        the long runs: 10^6 executions per target
 #   scripts/fuzz.sh --time 600 dsmap tum  the named targets for 10 minutes each
 #   scripts/fuzz.sh --make-corpus         regenerate fuzz/corpus/* and fuzz/dict/*
@@ -46,7 +46,7 @@ do_build=1
 targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --smoke) mode=run; seconds=12; smoke=1 ;;
+    --smoke) mode=run; seconds=8; smoke=1 ;;
     --time) mode=run; seconds="$2"; shift ;;
     --runs) mode=run; runs="$2"; shift ;;
     --make-corpus) mode=corpus ;;

@@ -15,7 +15,7 @@ cmake --build build -j "$jobs"
 
 # Sanitizers, with clang: one build serves the unit tests (real-data tests
 # excluded: they are slow under ASan and exercise the same code) and the
-# libFuzzer targets, which then run 12 s each (scripts/fuzz.sh --smoke).
+# libFuzzer targets, which then run 8 s each (scripts/fuzz.sh --smoke).
 # CMake cannot switch an existing folder to another compiler: a build-asan
 # left by gcc is started afresh.
 grep -qs '^CMAKE_CXX_COMPILER:.*clang' build-asan/CMakeCache.txt || rm -rf build-asan
