@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "slam/loop_round.hpp"
@@ -27,13 +28,20 @@ void LoopClosureConfig::validate() const {
   if (!(max_residual_xy > 0.0) || !(max_residual_theta > 0.0))
     throw ConfigError("loop_closure.max_residual_xy and max_residual_theta must be > 0");
   if (round_nodes < 1) throw ConfigError("loop_closure.round_nodes must be >= 1");
+  if (foreign_max_pieces < 0 || foreign_backlog < 0)
+    throw ConfigError("loop_closure.foreign_max_pieces and foreign_backlog must be >= 0");
   search.validate();
   graph.validate();
 }
 
 LoopCloser::LoopCloser(const LoopClosureConfig& config, const MapConfig& map, const PointWeightConfig& weights,
                        std::uint64_t seed, Executor* executor)
-    : config_(config), map_(map), weights_(weights), seed_(seed), executor_(executor ? executor : &inline_) {}
+    : config_(config),
+      map_(map),
+      weights_(weights),
+      seed_(seed),
+      executor_(executor ? executor : &inline_),
+      foreign_(map) {}
 
 LoopCloser::~LoopCloser() {
   // A round still running reads data this object shares with it.
@@ -104,6 +112,40 @@ void LoopCloser::add_node(std::size_t index, const Pose2& local_pose, int submap
   ++nodes_since_round_;
 }
 
+void LoopCloser::set_foreign_map(int frame, const Pose2& frame_pose, const std::vector<ForeignPiece>& pieces) {
+  const std::vector<std::size_t> added = foreign_.set(frame, frame_pose, pieces);
+  new_pieces_.insert(new_pieces_.end(), added.begin(), added.end());
+}
+
+void LoopCloser::add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose) {
+  const ScanRecord& s = scans_.at(index);
+  if (s.node < 0) return;  // before the first node: nothing to tie it to
+  const Pose2 node_pose = scan_pose * s.relative.inverse();
+  constraints_.push_back(foreign_.encounter(frame, s.node, node_pose, frame_pose));
+  new_constraints_ = true;
+}
+
+std::optional<Pose2> LoopCloser::frame_pose(int frame) const {
+  if (foreign_.graph_index(frame) < 0) return std::nullopt;
+  return foreign_.frame_pose(frame);
+}
+
+// Our earlier nodes near pieces new to us search them too, a few a round.
+void LoopCloser::queue_backlog() {
+  for (std::size_t k : new_pieces_) {
+    const ForeignPieceInfo& info = foreign_.pieces()[k];
+    const Pose2 cells = foreign_.frame_poses()[static_cast<std::size_t>(info.frame)] * info.piece.pose;
+    const Eigen::Vector2d centre = cells * info.centre;
+    for (std::size_t i = 0; i < searched_up_to_; ++i) {
+      if (!nodes_[i].points) continue;
+      const Pose2 p = node_global(static_cast<int>(i));
+      if (std::hypot(p.x - centre.x(), p.y - centre.y()) - info.radius <= config_.max_distance)
+        backlog_.push_back({static_cast<int>(i), nodes_[i].points, k});
+    }
+  }
+  new_pieces_.clear();
+}
+
 void LoopCloser::revise_scan(std::size_t index, const Pose2& local_pose) {
   ScanRecord& s = scans_.at(index);
   s.relative = s.node >= 0 ? between(nodes_[static_cast<std::size_t>(s.node)].local, local_pose) : local_pose;
@@ -148,7 +190,7 @@ std::size_t LoopCloser::memory_bytes() const {
   for (const Node& node : nodes_)
     if (node.points) n += node.points->memory_bytes();
   for (const SubmapRecord& r : submaps_) n += r.nodes.capacity() * sizeof(int);
-  return n;
+  return n + foreign_.memory_bytes();
 }
 
 void LoopCloser::start_round() {
@@ -157,6 +199,7 @@ void LoopCloser::start_round() {
     apply_round();
   }
   nodes_since_round_ = 0;
+  queue_backlog();  // nodes searched before: the new ones search every piece anyway
   auto round = std::make_unique<Round>();
   RoundInput& in = round->in;
   in.map = map_;
@@ -174,7 +217,13 @@ void LoopCloser::start_round() {
     in.submaps.push_back({r.finished, r.nodes, r.anchor, r.finished ? r.travel_end : travel_, r.fixed});
   }
   in.graph.constraints = constraints_;
+  in.graph.frames = foreign_.frame_poses();
   in.graph.fixed_submap = 0;
+  in.foreign = foreign_.pieces();
+  const std::size_t take = std::min(backlog_.size(), static_cast<std::size_t>(config_.foreign_backlog));
+  in.backlog.assign(backlog_.begin(), backlog_.begin() + static_cast<std::ptrdiff_t>(take));
+  backlog_.erase(backlog_.begin(), backlog_.begin() + static_cast<std::ptrdiff_t>(take));
+  in.new_constraints = std::exchange(new_constraints_, false);
   in.pending = pending_;
   in.last_closure_travel = last_closure_travel_;
   Round* job = round.get();
@@ -186,9 +235,13 @@ void LoopCloser::start_round() {
 }
 
 LoopClosure LoopCloser::record(const LoopCandidate& c) const {
+  const std::size_t scan = nodes_[static_cast<std::size_t>(c.node)].scan;
+  if (c.foreign)
+    return {scan, foreign_.frames()[static_cast<std::size_t>(c.submap)], true, std::nullopt, c.relative, std::nullopt,
+            Pose2(), c.score, c.inliers, c.same_side};
   const SubmapRecord& r = submaps_[static_cast<std::size_t>(c.submap)];
-  LoopClosure closure{nodes_[static_cast<std::size_t>(c.node)].scan, c.submap, std::nullopt, c.relative,
-                      std::nullopt, Pose2(), c.score, c.inliers, c.same_side};
+  LoopClosure closure{scan, c.submap, false, std::nullopt, c.relative, std::nullopt, Pose2(), c.score, c.inliers,
+                      c.same_side};
   double nearest = std::numeric_limits<double>::infinity();
   for (int n : r.nodes) {
     const Node& node = nodes_[static_cast<std::size_t>(n)];
@@ -211,14 +264,17 @@ void LoopCloser::apply_round() {
   ++stats_.rounds;
   pending_ = out.pending;
   for (const LoopCandidate& c : out.accepted) {
-    constraints_.push_back({Constraint::Kind::loop, c.submap, c.node, c.relative});
+    constraints_.push_back({c.foreign ? Constraint::Kind::foreign : Constraint::Kind::loop, c.submap, c.node,
+                            c.relative});
     closures_.push_back(record(c));
-    last_closure_travel_ = std::max(last_closure_travel_, nodes_[static_cast<std::size_t>(c.node)].travel);
+    if (!c.foreign)
+      last_closure_travel_ = std::max(last_closure_travel_, nodes_[static_cast<std::size_t>(c.node)].travel);
   }
   if (!out.optimized) return;
   ++stats_.optimizations;
   optimized_ = out.graph.nodes;
   optimized_submaps_ = out.graph.submaps;
+  foreign_.apply(out.graph.frames);
   const Node& last = nodes_[optimized_.size() - 1];
   global_from_local_ = optimized_.back() * last.local.inverse();
   ++version_;

@@ -26,6 +26,7 @@
 #include "sensor/scan_points.hpp"
 #include "slam/compact_scan.hpp"
 #include "slam/executor.hpp"
+#include "slam/foreign_maps.hpp"
 #include "slam/loop_round.hpp"
 #include "slam/loop_search.hpp"
 #include "slam/pose_graph.hpp"
@@ -36,7 +37,8 @@ namespace dsswarm {
 // An accepted loop closure, for the record.
 struct LoopClosure {
   std::size_t scan = 0;         // the node's scan (process() order)
-  int submap = 0;
+  int submap = 0;               // foreign: the caller's id of the other robot's frame
+  bool foreign = false;         // into another robot's map (relative: in its frame)
   std::optional<std::size_t> anchor_scan;  // the scan the submap's frame is anchored at (none: a given map)
   Pose2 relative;               // the node's pose in the submap's frame
   // The same relative to the submap's node nearest to where the closure put
@@ -77,6 +79,18 @@ class LoopCloser {
   // (searches and optimization) and applies it.
   void finish(const Submaps& submaps);
 
+  // Another robot's map (foreign_maps.hpp), `frame` being the caller's id for
+  // that robot: its finished pieces, searched for loop closures from the next
+  // round on, and the frame's pose here as the caller knows it (kept until
+  // an encounter ties it into the graph).
+  void set_foreign_map(int frame, const Pose2& frame_pose, const std::vector<ForeignPiece>& pieces);
+  // An encounter with that robot: at our scan `index` (process() order,
+  // global pose `scan_pose` then) its frame was at `frame_pose` (global, then).
+  void add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose);
+  // Where that robot's frame lies in ours now; nullopt if unknown.
+  std::optional<Pose2> frame_pose(int frame) const;
+  const ForeignMaps& foreign() const { return foreign_; }
+
   // Global pose of a local pose now (as the latest optimization moved the trajectory).
   Pose2 to_global(const Pose2& local) const { return global_from_local_ * local; }
   // Every scan's best global pose, in process() order.
@@ -116,6 +130,7 @@ class LoopCloser {
   void add_node(std::size_t index, const Pose2& local_pose, int submap, const std::vector<ScanPoint>& points);
   void note_finished(const Submaps& submaps);
   void start_round();
+  void queue_backlog();
   void apply_round();
   LoopClosure record(const LoopCandidate& c) const;
   Pose2 node_global(int node) const;
@@ -134,6 +149,10 @@ class LoopCloser {
   std::vector<Pose2> optimized_submaps_;     // likewise for submaps
   Pose2 global_from_local_;
   std::vector<PendingCandidate> pending_;    // verified, waiting for a partner
+  ForeignMaps foreign_;
+  std::vector<std::size_t> new_pieces_;      // foreign pieces not yet searched from earlier nodes
+  std::vector<RoundInput::Backlog> backlog_; // those searches, waiting for a round
+  bool new_constraints_ = false;             // encounters since the last round
   double travel_ = 0.0;
   double last_closure_travel_ = -1e9;
   std::optional<Pose2> last_scan_pose_;

@@ -12,17 +12,29 @@
 namespace dsswarm {
 namespace {
 
+// What a search looks in: one of our finished submaps, or another robot's piece.
+struct Target {
+  bool foreign = false;
+  int index = 0;  // into in.submaps, or into in.foreign
+  auto operator<=>(const Target&) const = default;
+};
+
 struct Task {
   int node;
-  int submap;
+  Target target;
   SearchWindow window;
   const CompactScan* points;
-  Pose2 prior;  // the node's estimated pose in the submap's cells (the local frame)
+  Pose2 prior;  // the node's estimated pose in the target's cells
 };
 
 Pose2 prior_in(const RoundInput& in, int node, int submap) {
   return in.submaps[static_cast<std::size_t>(submap)].anchor *
          between(in.graph.submaps[static_cast<std::size_t>(submap)], in.graph.nodes[static_cast<std::size_t>(node)]);
+}
+
+// Where a foreign piece's cells lie in our global frame now.
+Pose2 piece_global(const RoundInput& in, const ForeignPieceInfo& p) {
+  return in.graph.frames[static_cast<std::size_t>(p.frame)] * p.piece.pose;
 }
 
 // The finished submaps worth searching for `node`: not its own nor the one
@@ -51,12 +63,50 @@ std::vector<int> nearby_submaps(const RoundInput& in, int node, const LoopClosur
   return out;
 }
 
+// How far `node` is from the evidence of foreign piece `k` (0 inside its extent).
+double distance_to_piece(const RoundInput& in, int node, std::size_t k) {
+  const ForeignPieceInfo& info = in.foreign[k];
+  const Pose2& p = in.graph.nodes[static_cast<std::size_t>(node)];
+  const Eigen::Vector2d c = piece_global(in, info) * info.centre;
+  return std::max(0.0, std::hypot(c.x() - p.x, c.y() - p.y) - info.radius);
+}
+
+// Other robots' pieces worth searching for `node`: within max_distance, nearest first.
+std::vector<std::size_t> nearby_pieces(const RoundInput& in, int node, const LoopClosureConfig& config) {
+  std::vector<std::pair<double, std::size_t>> near;
+  for (std::size_t k = 0; k < in.foreign.size(); ++k)
+    if (const double d = distance_to_piece(in, node, k); d <= config.max_distance) near.push_back({d, k});
+  std::sort(near.begin(), near.end());
+  std::vector<std::size_t> out;
+  for (const auto& [d, k] : near) {
+    if (static_cast<int>(out.size()) >= config.foreign_max_pieces) break;
+    out.push_back(k);
+  }
+  return out;
+}
+
+SearchWindow grown(double d, const LoopClosureConfig& config) {
+  return {std::min(config.max_window_xy, config.window_xy + config.window_xy_per_m * d),
+          std::min(config.max_window_theta, config.window_theta + config.window_theta_per_m * d)};
+}
+
 // Wider the further the robot went since the submap or the last closure.
 SearchWindow window_for(const RoundInput& in, int node, int submap, const LoopClosureConfig& config) {
   const double since = std::max(in.submaps[static_cast<std::size_t>(submap)].travel_end, in.last_closure_travel);
-  const double d = std::max(0.0, in.node_travel[static_cast<std::size_t>(node)] - since);
-  return {std::min(config.max_window_xy, config.window_xy + config.window_xy_per_m * d),
-          std::min(config.max_window_theta, config.window_theta + config.window_theta_per_m * d)};
+  return grown(std::max(0.0, in.node_travel[static_cast<std::size_t>(node)] - since), config);
+}
+
+// Wider the further the node is from our nearest node tied to that robot's frame.
+SearchWindow foreign_window(const RoundInput& in, int node, const ForeignPieceInfo& piece,
+                            const LoopClosureConfig& config) {
+  const Pose2& p = in.graph.nodes[static_cast<std::size_t>(node)];
+  double nearest = config.max_distance * 10.0;  // never tied: as wide as the window grows
+  for (const Constraint& c : in.graph.constraints)
+    if (c.kind == Constraint::Kind::foreign && c.submap == piece.frame) {
+      const Pose2& q = in.graph.nodes[static_cast<std::size_t>(c.node)];
+      nearest = std::min(nearest, std::hypot(q.x - p.x, q.y - p.y));
+    }
+  return grown(nearest, config);
 }
 
 void count_rejection(LoopClosureStats& stats, LoopRejection r) {
@@ -70,61 +120,98 @@ void count_rejection(LoopClosureStats& stats, LoopRejection r) {
   }
 }
 
-Constraint as_constraint(const LoopCandidate& c) { return {Constraint::Kind::loop, c.submap, c.node, c.relative}; }
+Constraint as_constraint(const LoopCandidate& c) {
+  return {c.foreign ? Constraint::Kind::foreign : Constraint::Kind::loop, c.submap, c.node, c.relative};
+}
+
+std::vector<Task> tasks_for(const RoundInput& in, const LoopClosureConfig& config) {
+  std::vector<Task> tasks;
+  for (const RoundInput::Search& s : in.searches) {
+    for (int submap : nearby_submaps(in, s.node, config))
+      tasks.push_back({s.node, {false, submap}, window_for(in, s.node, submap, config), s.points.get(),
+                       prior_in(in, s.node, submap)});
+    for (std::size_t k : nearby_pieces(in, s.node, config)) {
+      const ForeignPieceInfo& piece = in.foreign[k];
+      tasks.push_back({s.node, {true, static_cast<int>(k)}, foreign_window(in, s.node, piece, config), s.points.get(),
+                       between(piece_global(in, piece), in.graph.nodes[static_cast<std::size_t>(s.node)])});
+    }
+  }
+  for (const RoundInput::Backlog& b : in.backlog) {
+    const ForeignPieceInfo& piece = in.foreign[b.piece];
+    tasks.push_back({b.node, {true, static_cast<int>(b.piece)}, foreign_window(in, b.node, piece, config),
+                     b.points.get(), between(piece_global(in, piece), in.graph.nodes[static_cast<std::size_t>(b.node)])});
+  }
+  // Target by target, so each one's bounds are built once and freed after.
+  std::stable_sort(tasks.begin(), tasks.end(), [](const Task& a, const Task& b) { return a.target < b.target; });
+  return tasks;
+}
+
+// The cells a target's searches can reach, and the widest window asked of it.
+struct Reach {
+  double window = 0.0;
+  CellIndex lo{std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max()};
+  CellIndex hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
+};
+
+Reach reach_of(const std::vector<Task>& tasks, std::size_t first, const RoundInput& in, const LoopClosureConfig& config) {
+  Reach r;
+  const double inv = 1.0 / in.map.resolution;
+  const auto cell = [&](double v) { return static_cast<std::int32_t>(std::floor(v * inv)); };
+  for (std::size_t i = first; i < tasks.size() && tasks[i].target == tasks[first].target; ++i) {
+    const Task& t = tasks[i];
+    r.window = std::max(r.window, t.window.xy);
+    const double extent = t.window.xy + config.search.max_range + in.map.resolution;
+    r.lo = {std::min(r.lo.x, cell(t.prior.x - extent)), std::min(r.lo.y, cell(t.prior.y - extent))};
+    r.hi = {std::max(r.hi.x, cell(t.prior.x + extent) + 1), std::max(r.hi.y, cell(t.prior.y + extent) + 1)};
+  }
+  return r;
+}
+
+// The target's finest level around the searched poses, as a live map: all a
+// search needs (branch and bound places the scan within a cell, the
+// refinement only polishes, both with the points within max_range).
+Submap thaw_target(const RoundInput& in, const Target& target, const Reach& r) {
+  MapConfig finest_only = in.map;
+  finest_only.levels = 1;
+  if (target.foreign) {
+    const ForeignPiece& p = in.foreign[static_cast<std::size_t>(target.index)].piece;
+    return Submap{p.id, Pose2(), 0, 0.0, false, p.map->thaw(finest_only, r.lo, r.hi), FrozenMap()};
+  }
+  const Submap& s = *in.submaps[static_cast<std::size_t>(target.index)].finished;
+  return Submap{s.id, s.anchor, s.scans, s.travel, false, s.frozen.thaw(finest_only, r.lo, r.hi), FrozenMap()};
+}
 
 std::vector<LoopCandidate> search_all(const RoundInput& in, const LoopClosureConfig& config,
                                       const PointWeightConfig& weights, std::uint64_t seed, LoopClosureStats& stats) {
-  std::vector<Task> tasks;
-  // Per submap: the widest window asked of it, and the cells its searches can reach.
-  struct Reach {
-    double window = 0.0;
-    CellIndex lo{std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max()};
-    CellIndex hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
-  };
-  std::map<int, Reach> reach;
-  const double inv = 1.0 / in.map.resolution;
-  for (const RoundInput::Search& s : in.searches)
-    for (int submap : nearby_submaps(in, s.node, config)) {
-      Task t{s.node, submap, window_for(in, s.node, submap, config), s.points.get(), prior_in(in, s.node, submap)};
-      Reach& r = reach[submap];
-      r.window = std::max(r.window, t.window.xy);
-      const double extent = t.window.xy + config.search.max_range + in.map.resolution;
-      const auto cell = [&](double v) { return static_cast<std::int32_t>(std::floor(v * inv)); };
-      r.lo = {std::min(r.lo.x, cell(t.prior.x - extent)), std::min(r.lo.y, cell(t.prior.y - extent))};
-      r.hi = {std::max(r.hi.x, cell(t.prior.x + extent) + 1), std::max(r.hi.y, cell(t.prior.y + extent) + 1)};
-      tasks.push_back(t);
-    }
-  // Submap by submap, so each one's bounds are built once and freed after.
-  std::stable_sort(tasks.begin(), tasks.end(), [](const Task& a, const Task& b) { return a.submap < b.submap; });
+  const std::vector<Task> tasks = tasks_for(in, config);
   std::vector<LoopCandidate> found;
-  MapConfig finest_only = in.map;
-  finest_only.levels = 1;
   std::unique_ptr<BranchAndBoundMatcher> matcher;
-  std::optional<Submap> thawed;  // the submap searched now, as a live map
-  int matcher_submap = -1;
-  for (const Task& t : tasks) {
-    const RoundInput::SubmapInfo& info = in.submaps[static_cast<std::size_t>(t.submap)];
-    if (t.submap != matcher_submap) {
-      // The finest level around the searched poses is all a search needs:
-      // branch and bound places the scan within a cell, the refinement only
-      // polishes, both with the points within max_range.
-      thawed = Submap{info.finished->id, info.finished->anchor, info.finished->scans, info.finished->travel, false,
-                      info.finished->frozen.thaw(finest_only, reach[t.submap].lo, reach[t.submap].hi),
-                      FrozenMap()};
-      const Reach& r = reach[t.submap];
+  std::optional<Submap> thawed;  // the target searched now
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const Task& t = tasks[i];
+    if (i == 0 || !(t.target == tasks[i - 1].target)) {
+      const Reach r = reach_of(tasks, i, in, config);
+      thawed = thaw_target(in, t.target, r);
       matcher = std::make_unique<BranchAndBoundMatcher>(thawed->map.finest(), r.window, config.search.max_depth, r.lo,
                                                         r.hi);
-      matcher_submap = t.submap;
     }
-    const std::uint64_t task_seed = seed ^ (static_cast<std::uint64_t>(t.node) * 0x9E3779B97F4A7C15ull +
-                                            static_cast<std::uint64_t>(t.submap));
+    const auto target_key = static_cast<std::uint64_t>(t.target.index) + (t.target.foreign ? (1ull << 32) : 0ull);
+    const std::uint64_t task_seed = seed ^ (static_cast<std::uint64_t>(t.node) * 0x9E3779B97F4A7C15ull + target_key);
     LoopSearch r = search_loop_closure(*matcher, *thawed, t.points->points(weights), t.prior, t.window,
                                        config.search, task_seed);
     ++stats.searches;
     count_rejection(stats, r.rejection);
     if (r.rejection != LoopRejection::none) continue;
     r.candidate.node = t.node;
-    r.candidate.submap = t.submap;
+    if (t.target.foreign) {
+      const ForeignPieceInfo& piece = in.foreign[static_cast<std::size_t>(t.target.index)];
+      r.candidate.foreign = true;
+      r.candidate.submap = piece.frame;
+      r.candidate.relative = piece.piece.pose * r.candidate.relative;  // from its cells into its robot's frame
+      ++stats.foreign_candidates;
+    } else {
+      r.candidate.submap = t.target.index;
+    }
     found.push_back(r.candidate);
   }
   return found;
@@ -132,11 +219,15 @@ std::vector<LoopCandidate> search_all(const RoundInput& in, const LoopClosureCon
 
 // Whether closures a and b can be compared: nodes close along the
 // trajectory, submaps the same or as close.
+// Another robot's frame is one rigid map: closures into it compare wherever
+// they are on it.
 bool comparable(const RoundInput& in, const Constraint& a, const Constraint& b, double travel) {
   const auto t = [&](int node) { return in.node_travel[static_cast<std::size_t>(node)]; };
   const auto end = [&](int s) { return in.submaps[static_cast<std::size_t>(s)].travel_end; };
-  return std::abs(t(a.node) - t(b.node)) <= travel &&
-         (a.submap == b.submap || std::abs(end(a.submap) - end(b.submap)) <= travel);
+  if (std::abs(t(a.node) - t(b.node)) > travel) return false;
+  const bool foreign_a = a.kind == Constraint::Kind::foreign, foreign_b = b.kind == Constraint::Kind::foreign;
+  if (foreign_a || foreign_b) return foreign_a == foreign_b && a.submap == b.submap;
+  return a.submap == b.submap || std::abs(end(a.submap) - end(b.submap)) <= travel;
 }
 
 // Splits this round's candidates and the pending ones into those with an
@@ -147,7 +238,7 @@ void confirm(const RoundInput& in, std::vector<LoopCandidate> fresh, const LoopC
   for (const LoopCandidate& c : fresh) pool.push_back({c, 0});
   std::vector<Constraint> accepted_before;
   for (const Constraint& c : in.graph.constraints)
-    if (c.kind == Constraint::Kind::loop) accepted_before.push_back(c);
+    if (c.kind != Constraint::Kind::local) accepted_before.push_back(c);
   for (std::size_t i = 0; i < pool.size(); ++i) {
     const Constraint a = as_constraint(pool[i].candidate);
     bool agreed = false;
@@ -171,6 +262,11 @@ void confirm(const RoundInput& in, std::vector<LoopCandidate> fresh, const LoopC
 // Optimizes with the accepted closures; drops, one at a time, the worst new
 // closure the optimized graph does not bear out, and optimizes again.
 void optimize_with(const RoundInput& in, const LoopClosureConfig& config, RoundOutput& out) {
+  if (out.accepted.empty() && in.new_constraints) {
+    out.graph = in.graph;
+    out.optimized = optimize(out.graph, config.graph).usable;
+    return;
+  }
   while (!out.accepted.empty()) {
     out.graph = in.graph;
     for (const LoopCandidate& c : out.accepted) out.graph.constraints.push_back(as_constraint(c));
@@ -204,6 +300,8 @@ void run_round(Round& round, const LoopClosureConfig& config, const PointWeightC
   out.stats.accepted = out.accepted.size();
   optimize_with(round.in, config, out);
   out.stats.accepted = out.accepted.size();
+  out.stats.foreign_accepted = static_cast<std::size_t>(
+      std::count_if(out.accepted.begin(), out.accepted.end(), [](const LoopCandidate& c) { return c.foreign; }));
   out.stats.background_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -218,6 +316,8 @@ void add_stats(LoopClosureStats& total, const LoopClosureStats& more) {
   total.rejected_ambiguous += more.rejected_ambiguous;
   total.rejected_inconsistent += more.rejected_inconsistent;
   total.rejected_residual += more.rejected_residual;
+  total.foreign_candidates += more.foreign_candidates;
+  total.foreign_accepted += more.foreign_accepted;
   total.background_seconds += more.background_seconds;
 }
 

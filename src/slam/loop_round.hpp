@@ -8,6 +8,7 @@
 
 #include "sensor/scan_points.hpp"
 #include "slam/compact_scan.hpp"
+#include "slam/foreign_maps.hpp"
 #include "slam/loop_search.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/submaps.hpp"
@@ -35,6 +36,13 @@ struct LoopClosureConfig {
   double window_theta = 0.05;          // rad
   double window_theta_per_m = 0.005;   // rad per m
   double max_window_theta = 0.5;       // rad
+  // Other robots' submaps (foreign_maps.hpp) are searched like our own, at
+  // most `foreign_max_pieces` per node, nearest first, within a window that
+  // grows with the distance from the nearest node already tied to that
+  // robot's frame. Pieces new to us are also searched from our earlier nodes
+  // near them, at most `foreign_backlog` such searches a round.
+  int foreign_max_pieces = 3;
+  int foreign_backlog = 100;
   LoopSearchConfig search;
   // Pairwise consistency: a verified candidate is accepted once another
   // closure (of this round, an earlier pending one or an accepted one) whose
@@ -68,6 +76,8 @@ struct LoopClosureStats {
   std::size_t rejected_ambiguous = 0;
   std::size_t rejected_inconsistent = 0;  // never found an agreeing partner
   std::size_t rejected_residual = 0;      // not borne out by the optimized graph
+  std::size_t foreign_candidates = 0;     // of `candidates`: into other robots' submaps
+  std::size_t foreign_accepted = 0;       // of `accepted`
   double background_seconds = 0.0;        // wall time of the rounds themselves
 };
 
@@ -97,6 +107,16 @@ struct RoundInput {
   std::vector<SubmapInfo> submaps;
   std::vector<PendingCandidate> pending;
   double last_closure_travel = -1e9;
+  // Other robots' submaps (graph.frames holds their frames), and searches of
+  // earlier nodes into pieces new to us: (node, index into `foreign`).
+  std::vector<ForeignPieceInfo> foreign;
+  struct Backlog {
+    int node;
+    std::shared_ptr<const CompactScan> points;
+    std::size_t piece;
+  };
+  std::vector<Backlog> backlog;
+  bool new_constraints = false;  // optimize even without new closures (an encounter arrived)
 };
 
 struct RoundOutput {

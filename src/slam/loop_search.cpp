@@ -86,9 +86,9 @@ LoopSearch search_loop_closure(const BranchAndBoundMatcher& matcher, const Subma
 
 bool closures_agree(const PoseGraph& graph, const Constraint& a, const Constraint& b, double xy, double theta) {
   const auto node = [&](int i) { return graph.nodes[static_cast<std::size_t>(i)]; };
-  const auto submap = [&](int i) { return graph.submaps[static_cast<std::size_t>(i)]; };
   const Pose2 along_trajectory = between(node(a.node), node(b.node));
-  const Pose2 through_closures = a.relative.inverse() * between(submap(a.submap), submap(b.submap)) * b.relative;
+  const Pose2 through_closures =
+      a.relative.inverse() * between(reference_pose(graph, a), reference_pose(graph, b)) * b.relative;
   const Pose2 e = between(along_trajectory, through_closures);
   return std::hypot(e.x, e.y) <= xy && std::abs(e.theta) <= theta;
 }

@@ -55,8 +55,9 @@ const char* to_string(LoopRejection r);
 
 struct LoopCandidate {
   int node = 0;
-  int submap = 0;
-  Pose2 relative;           // the node's pose in the submap's frame (its anchor)
+  int submap = 0;           // foreign: the other robot's frame (its index in the graph's frames)
+  bool foreign = false;     // into another robot's submap (foreign_maps.hpp)
+  Pose2 relative;           // the node's pose in the submap's frame (its anchor), or in the foreign frame
   double score = 0.0;       // branch-and-bound score of the best pose
   double known = 0.0;       // match_quality of the refined pose
   double inliers = 0.0;

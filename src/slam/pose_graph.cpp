@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <array>
+#include <utility>
 #include <numbers>
 
 #include "common/errors.hpp"
@@ -12,6 +13,8 @@ namespace dsswarm {
 void PoseGraphConfig::validate() const {
   if (!(local_sigma_xy > 0.0) || !(local_sigma_theta > 0.0) || !(loop_sigma_xy > 0.0) || !(loop_sigma_theta > 0.0))
     throw ConfigError("graph.local_sigma_xy/theta and graph.loop_sigma_xy/theta must be > 0");
+  if (!(foreign_sigma_xy > 0.0) || !(foreign_sigma_theta > 0.0))
+    throw ConfigError("graph.foreign_sigma_xy and graph.foreign_sigma_theta must be > 0");
   if (!(loop_huber > 0.0)) throw ConfigError("graph.loop_huber must be > 0");
   if (max_iterations < 1) throw ConfigError("graph.max_iterations must be >= 1");
 }
@@ -45,33 +48,48 @@ struct RelativePoseError {
 
 using Block = std::array<double, 3>;
 
+std::pair<double, double> sigmas(Constraint::Kind kind, const PoseGraphConfig& config) {
+  switch (kind) {
+    case Constraint::Kind::local: return {config.local_sigma_xy, config.local_sigma_theta};
+    case Constraint::Kind::loop: return {config.loop_sigma_xy, config.loop_sigma_theta};
+    case Constraint::Kind::foreign: return {config.foreign_sigma_xy, config.foreign_sigma_theta};
+  }
+  return {config.loop_sigma_xy, config.loop_sigma_theta};
+}
+
 Block block_of(const Pose2& p) { return {p.x, p.y, p.theta}; }
 
 }  // namespace
 
+const Pose2& reference_pose(const PoseGraph& graph, const Constraint& c) {
+  const auto i = static_cast<std::size_t>(c.submap);
+  return c.kind == Constraint::Kind::foreign ? graph.frames[i] : graph.submaps[i];
+}
+
 Pose2 constraint_error(const PoseGraph& graph, const Constraint& c) {
-  return between(c.relative, between(graph.submaps[static_cast<std::size_t>(c.submap)],
-                                     graph.nodes[static_cast<std::size_t>(c.node)]));
+  return between(c.relative, between(reference_pose(graph, c), graph.nodes[static_cast<std::size_t>(c.node)]));
 }
 
 OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
   OptimizationSummary summary;
   if (graph.nodes.empty()) return summary;
-  std::vector<Block> nodes, submaps;
+  std::vector<Block> nodes, submaps, frames;
   for (const Pose2& p : graph.nodes) nodes.push_back(block_of(p));
   for (const Pose2& p : graph.submaps) submaps.push_back(block_of(p));
+  for (const Pose2& p : graph.frames) frames.push_back(block_of(p));
 
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   ceres::HuberLoss huber(config.loop_huber);
   for (const Constraint& c : graph.constraints) {
-    const bool loop = c.kind == Constraint::Kind::loop;
-    const double wxy = 1.0 / (loop ? config.loop_sigma_xy : config.local_sigma_xy);
-    const double wth = 1.0 / (loop ? config.loop_sigma_theta : config.local_sigma_theta);
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(new RelativePoseError{c.relative, wxy, wth});
-    problem.AddResidualBlock(cost, loop ? &huber : nullptr, submaps[static_cast<std::size_t>(c.submap)].data(),
-                             nodes[static_cast<std::size_t>(c.node)].data());
+    const auto [sigma_xy, sigma_theta] = sigmas(c.kind, config);
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(
+        new RelativePoseError{c.relative, 1.0 / sigma_xy, 1.0 / sigma_theta});
+    const bool robust = c.kind != Constraint::Kind::local;
+    const auto i = static_cast<std::size_t>(c.submap);
+    double* reference = c.kind == Constraint::Kind::foreign ? frames[i].data() : submaps[i].data();
+    problem.AddResidualBlock(cost, robust ? &huber : nullptr, reference, nodes[static_cast<std::size_t>(c.node)].data());
   }
   // One submap held fixed anchors the global frame.
   if (graph.fixed_submap >= 0 && static_cast<std::size_t>(graph.fixed_submap) < submaps.size()) {
@@ -94,6 +112,7 @@ OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
   if (!summary.usable) return summary;
   for (std::size_t i = 0; i < nodes.size(); ++i) graph.nodes[i] = {nodes[i][0], nodes[i][1], nodes[i][2]};
   for (std::size_t i = 0; i < submaps.size(); ++i) graph.submaps[i] = {submaps[i][0], submaps[i][1], submaps[i][2]};
+  for (std::size_t i = 0; i < frames.size(); ++i) graph.frames[i] = {frames[i][0], frames[i][1], frames[i][2]};
   return summary;
 }
 

@@ -6,10 +6,13 @@
 //   * local: local SLAM's estimate, for the submap the node's scan went into
 //     and, where submaps meet, the one before it (that ties them together),
 //   * loop:  a loop closure into another submap, under a robust loss,
+//   * foreign: the node placed in another robot's map frame (a frame of
+//     `frames`: where that robot's map lies in ours) — by an encounter with
+//     it, or a loop closure into one of its submaps — under the same loss,
 //
 // and optimized by Ceres (one thread). No constraint joins two nodes, so
 // Ceres eliminates the nodes first (Schur complement) and factorizes only
-// the submaps' part: fast, and small in memory however long the trajectory.
+// the submaps' and frames' part: fast, and small in memory however long the trajectory.
 // The graph is plain data: the loop-closure module snapshots it, optimizes
 // the copy and hands the poses back (loop_closer.hpp).
 #include <cstdint>
@@ -27,7 +30,11 @@ struct PoseGraphConfig {
   double local_sigma_theta = 0.005;  // rad
   double loop_sigma_xy = 0.05;       // m
   double loop_sigma_theta = 0.01;    // rad
-  // Huber loss on loop closures, in units of their sigmas: beyond it an edge
+  // Another robot's map frame seen from one of our nodes: its submaps were
+  // optimized by that robot, and an encounter rests on one scan.
+  double foreign_sigma_xy = 0.05;    // m
+  double foreign_sigma_theta = 0.01; // rad
+  // Huber loss on loop closures (and foreign ones), in units of their sigmas: beyond it an edge
   // pulls with constant force, so one wrong closure cannot drag the graph far
   // while a right one after a long drift still pulls the loop shut.
   double loop_huber = 3.0;
@@ -37,19 +44,23 @@ struct PoseGraphConfig {
 };
 
 struct Constraint {
-  enum class Kind : std::uint8_t { local, loop };
+  enum class Kind : std::uint8_t { local, loop, foreign };
   Kind kind = Kind::local;
-  int submap = 0;
+  int submap = 0;   // foreign: the index of a frame in PoseGraph::frames
   int node = 0;
-  Pose2 relative;   // measured pose of the node in the submap's frame (its anchor)
+  Pose2 relative;   // measured pose of the node in the submap's frame (its anchor), or in the foreign frame
 };
 
 struct PoseGraph {
   std::vector<Pose2> nodes;    // global poses of the trajectory nodes
   std::vector<Pose2> submaps;  // global poses of the submaps' anchors
+  std::vector<Pose2> frames;   // global poses of other robots' map frames
   std::vector<Constraint> constraints;
   int fixed_submap = 0;        // held constant: it anchors the global frame
 };
+
+// The pose a constraint places its node relative to: its submap's, or its frame's.
+const Pose2& reference_pose(const PoseGraph& graph, const Constraint& c);
 
 struct OptimizationSummary {
   int iterations = 0;

@@ -155,6 +155,13 @@ const MultiResMap& Slam::own_map() const {
   return *global_;
 }
 
+std::vector<ForeignPiece> Slam::finished_pieces() const {
+  std::vector<ForeignPiece> out;
+  for (const std::shared_ptr<const Submap>& s : submaps_.finished())
+    out.push_back({s->id, closer_.submap_cells_pose(s->id), std::shared_ptr<const FrozenMap>(s, &s->frozen)});
+  return out;
+}
+
 void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step) {
   const MultiResMap& map = matching_map();
   const MatchResult m = recovery_.locate(map, points, step.prior);

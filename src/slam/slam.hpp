@@ -134,6 +134,22 @@ class Slam {
   std::vector<Pose2> trajectory() const { return closer_.trajectory(); }
   std::vector<Pose2> local_trajectory() const { return closer_.local_trajectory(); }
   const Submaps& submaps() const { return submaps_; }
+  // This robot's finished submaps as another robot holds them: each one's
+  // evidence (shared, not copied) where its cells lie in our global frame.
+  std::vector<ForeignPiece> finished_pieces() const;
+
+  // Other robots' maps in this robot's pose graph (with loop closure on;
+  // slam/foreign_maps.hpp). `frame` is the caller's id for the other robot.
+  void set_foreign_map(int frame, const Pose2& frame_pose, const std::vector<ForeignPiece>& pieces) {
+    closer_.set_foreign_map(frame, frame_pose, pieces);
+  }
+  // An encounter: at our scan `index` (process() order; its global pose then
+  // `scan_pose`) the other robot's frame was seen at `frame_pose`.
+  void add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose) {
+    closer_.add_encounter(frame, index, scan_pose, frame_pose);
+  }
+  // Where the other robot's frame lies in ours now (as optimized); nullopt if unknown.
+  std::optional<Pose2> foreign_frame(int frame) const { return closer_.frame_pose(frame); }
   const LoopCloser& loop_closer() const { return closer_; }
   std::size_t scans_processed() const { return processed_; }
   std::size_t scans_matched() const { return matched_; }

@@ -1,0 +1,121 @@
+// Another robot's map in this robot's pose graph: an encounter whose heading
+// is a little off is corrected by loop closures into the other robot's
+// submaps, where the two robots' paths overlap.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "sim/loop_world.hpp"
+#include "slam/slam.hpp"
+
+namespace dsswarm {
+namespace {
+
+constexpr int kFrame = 7;  // the caller's id for robot B
+
+// A lap of the corridor ring (8 m lidar): from the middle of a long side,
+// or from corner `corner` (1-3) round to the same corner.
+SimulatedRun lap(int corner, std::uint64_t seed) {
+  LoopWorldConfig config;
+  config.laps = 2.0;
+  const LoopWorld w = make_loop_world(config);
+  LidarConfig lidar;
+  lidar.range_max = 8.0;
+  lidar.noise_std = 0.02;
+  if (corner == 0) {
+    const std::vector<Eigen::Vector2d> tour(w.tour.begin(), w.tour.begin() + 5);
+    return simulate_run(w.world, tour, w.start, RobotConfig{}, lidar, seed);
+  }
+  const std::vector<Eigen::Vector2d> tour(w.tour.begin() + corner - 1, w.tour.begin() + corner + 4);
+  return simulate_run(w.world, tour, tour_start_pose(tour), RobotConfig{}, lidar, seed);
+}
+
+struct Robots {
+  SimulatedRun a = lap(0, 1), b = lap(2, 2);
+  // Each map's frame is where its robot started (odometry starts at identity).
+  Pose2 b_in_a = between(a.ground_truth.front().second, b.ground_truth.front().second);
+};
+
+struct Outcome {
+  std::size_t foreign_accepted = 0;
+  double b_error_met = 0.0;  // mean, m: B's trajectory placed in A's frame as the encounter placed it, against the truth
+  double b_error = 0.0;      // the same as A ends up placing B's frame
+  double a_error = 0.0;      // mean, m: A's own trajectory, against the truth
+};
+
+// Mean distance between `poses` (placed by `frame`) and the truth, seen from `start` (a map frame's origin).
+double mean_error(const SimulatedRun& run, const std::vector<Pose2>& poses, const Pose2& frame, const Pose2& start) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const Pose2 est = frame * poses[i], truth = between(start, run.ground_truth[i].second);
+    sum += std::hypot(est.x - truth.x, est.y - truth.y);
+  }
+  return sum / static_cast<double>(poses.size());
+}
+
+// Robot A maps its lap; at its scan `meet` it meets B, whose whole map it
+// then holds, and the encounter places B's frame `heading_error` off about A.
+Outcome map_with_b(const Robots& r, const std::vector<ForeignPiece>& b_pieces, const std::vector<Pose2>& b_poses,
+                   double heading_error) {
+  Slam a(with_loop_closure());
+  const Pose2 start_a = r.a.ground_truth.front().second;
+  Outcome out;
+  constexpr std::size_t meet = 60;
+  for (std::size_t i = 0; i < r.a.log.scans.size(); ++i) {
+    const SlamStep step = a.process(r.a.log.scans[i]);
+    if (i != meet) continue;
+    // What the encounter saw: B's frame turned by heading_error about where A stands.
+    const Pose2 here = between(start_a, r.a.ground_truth[i].second);
+    const Pose2 seen = here * Pose2(0.0, 0.0, heading_error) * between(here, r.b_in_a);
+    a.set_foreign_map(kFrame, seen, b_pieces);
+    a.add_encounter(kFrame, i, step.pose, seen);
+    out.b_error_met = mean_error(r.b, b_poses, seen, start_a);
+  }
+  a.finish();
+  out.foreign_accepted = a.loop_closer().stats().foreign_accepted;
+  out.b_error = mean_error(r.b, b_poses, *a.foreign_frame(kFrame), start_a);
+  out.a_error = mean_error(r.a, a.trajectory(), Pose2(), start_a);
+  return out;
+}
+
+TEST(ForeignMaps, AnEncounterTurnedByOneDegreeIsStraightenedByClosuresIntoTheOtherRobotsSubmaps) {
+  const Robots r;
+  Slam b(with_loop_closure());
+  for (const LaserScan& s : r.b.log.scans) b.process(s);
+  b.finish();
+  const std::vector<ForeignPiece> pieces = b.finished_pieces();
+  ASSERT_GT(pieces.size(), 4u);
+  const double one_degree = std::numbers::pi / 180.0;
+
+  const Outcome o = map_with_b(r, pieces, b.trajectory(), one_degree);
+  // Where A met B, one degree is a few centimetres; levered over the ring it is decimetres.
+  EXPECT_GT(o.b_error_met, 0.2);
+  // Closures into B's submaps all along the ring put B's map where it is:
+  // within A's own error of the truth.
+  EXPECT_GT(o.foreign_accepted, 10u);
+  EXPECT_LT(o.b_error, o.a_error + 0.02);
+}
+
+TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
+  MapConfig config;
+  MultiResMap map(config);
+  map.mutable_level(0).mutable_at({3, 4}) = {0.6f, 0.1f};
+  auto frozen = std::make_shared<const FrozenMap>(map);
+  ForeignMaps maps(config);
+  EXPECT_EQ(maps.set(1, Pose2(1, 0, 0), {{0, Pose2(), frozen}, {1, Pose2(2, 0, 0), frozen}}).size(), 2u);
+  // Robot 1 closed a loop: piece 1 moved; piece 2 is new.
+  const std::vector<std::size_t> added = maps.set(1, Pose2(1, 0, 0), {{1, Pose2(2.5, 0, 0.1), frozen}, {2, Pose2(), frozen}});
+  ASSERT_EQ(added.size(), 1u);
+  EXPECT_EQ(maps.pieces()[added[0]].piece.id, 2);
+  EXPECT_DOUBLE_EQ(maps.pieces()[1].piece.pose.x, 2.5);
+  EXPECT_NEAR(maps.pieces()[0].centre.x(), 1.6, 1e-9);  // the tile holding cell (3, 4): [0, 3.2) m
+  // Until an encounter ties it into the graph, the frame takes the caller's pose.
+  maps.set(1, Pose2(3, 0, 0), {});
+  EXPECT_DOUBLE_EQ(maps.frame_pose(1).x, 3.0);
+  maps.encounter(1, 0, Pose2(), Pose2(4, 0, 0));
+  maps.set(1, Pose2(5, 0, 0), {});
+  EXPECT_DOUBLE_EQ(maps.frame_pose(1).x, 4.0);
+}
+
+}  // namespace
+}  // namespace dsswarm
