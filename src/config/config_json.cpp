@@ -211,6 +211,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"max_residual_xy", DSS_FIELD(double, loop_closure.max_residual_xy)},
         {"max_residual_theta", DSS_FIELD(double, loop_closure.max_residual_theta)},
         {"round_nodes", DSS_FIELD(int, loop_closure.round_nodes)},
+        {"rounds_in_flight", DSS_FIELD(int, loop_closure.rounds_in_flight)},
         {"foreign_max_pieces", DSS_FIELD(int, loop_closure.foreign_max_pieces)},
         {"foreign_backlog", DSS_FIELD(int, loop_closure.foreign_backlog)}}},
       {"graph",

@@ -25,19 +25,31 @@ WorkerThread::~WorkerThread() {
   thread_.join();
 }
 
-void WorkerThread::submit(std::function<void()> job) {
+std::uint64_t WorkerThread::submit(std::function<void()> job) {
+  std::uint64_t ticket = 0;
   {
     std::lock_guard lock(mutex_);
     jobs_.push_back(std::move(job));
+    ticket = ++submitted_;
   }
   work_or_stop_.notify_one();
+  return ticket;
+}
+
+void WorkerThread::wait_until(std::unique_lock<std::mutex>& lock, std::uint64_t ticket) {
+  const auto t0 = std::chrono::steady_clock::now();
+  idle_.wait(lock, [&] { return finished_ >= ticket; });
+  waited_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void WorkerThread::wait_for(std::uint64_t ticket) {
+  std::unique_lock lock(mutex_);
+  wait_until(lock, ticket);
 }
 
 void WorkerThread::wait() {
-  const auto t0 = std::chrono::steady_clock::now();
   std::unique_lock lock(mutex_);
-  idle_.wait(lock, [this] { return jobs_.empty() && !busy_; });
-  waited_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  wait_until(lock, submitted_);
 }
 
 double WorkerThread::cpu_seconds() const {
@@ -57,7 +69,6 @@ void WorkerThread::run() {
     if (jobs_.empty()) return;  // stopping, nothing left
     std::function<void()> job = std::move(jobs_.front());
     jobs_.pop_front();
-    busy_ = true;
     lock.unlock();
     const double t0 = thread_cpu_seconds();
     job();
@@ -70,8 +81,8 @@ void WorkerThread::run() {
     const double spent = thread_cpu_seconds() - t0;
     lock.lock();
     cpu_seconds_ += spent;
-    busy_ = false;
-    if (jobs_.empty()) idle_.notify_all();
+    ++finished_;
+    idle_.notify_all();
   }
 }
 

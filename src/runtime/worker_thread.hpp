@@ -20,7 +20,8 @@ class WorkerThread final : public Executor {
   WorkerThread(const WorkerThread&) = delete;
   WorkerThread& operator=(const WorkerThread&) = delete;
 
-  void submit(std::function<void()> job) override;
+  std::uint64_t submit(std::function<void()> job) override;
+  void wait_for(std::uint64_t ticket) override;
   void wait() override;
 
   // CPU time the thread has spent in jobs so far, seconds.
@@ -30,12 +31,14 @@ class WorkerThread final : public Executor {
 
  private:
   void run();
+  void wait_until(std::unique_lock<std::mutex>& lock, std::uint64_t ticket);
 
   mutable std::mutex mutex_;
   std::condition_variable work_or_stop_;
   std::condition_variable idle_;
   std::deque<std::function<void()>> jobs_;
-  bool busy_ = false;
+  std::uint64_t submitted_ = 0;
+  std::uint64_t finished_ = 0;
   bool stop_ = false;
   double cpu_seconds_ = 0.0;
   double waited_seconds_ = 0.0;

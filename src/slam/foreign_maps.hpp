@@ -56,6 +56,7 @@ class ForeignMaps {
   int graph_index(int frame) const;
   const std::vector<int>& frames() const { return frame_ids_; }
   const std::vector<Pose2>& frame_poses() const { return poses_; }
+  const std::vector<bool>& tied() const { return tied_; }
   // Poses the graph optimized (graph.frames, in graph order).
   void apply(const std::vector<Pose2>& optimized);
   Pose2 frame_pose(int frame) const;

@@ -28,6 +28,7 @@ void LoopClosureConfig::validate() const {
   if (!(max_residual_xy > 0.0) || !(max_residual_theta > 0.0))
     throw ConfigError("loop_closure.max_residual_xy and max_residual_theta must be > 0");
   if (round_nodes < 1) throw ConfigError("loop_closure.round_nodes must be >= 1");
+  if (rounds_in_flight < 1) throw ConfigError("loop_closure.rounds_in_flight must be >= 1");
   if (foreign_max_pieces < 0 || foreign_backlog < 0)
     throw ConfigError("loop_closure.foreign_max_pieces and foreign_backlog must be >= 0");
   search.validate();
@@ -45,7 +46,7 @@ LoopCloser::LoopCloser(const LoopClosureConfig& config, const MapConfig& map, co
 
 LoopCloser::~LoopCloser() {
   // A round still running reads data this object shares with it.
-  if (in_flight_) executor_->wait();
+  if (!in_flight_.empty()) executor_->wait_for(in_flight_.back().ticket);
 }
 
 void LoopCloser::add_fixed_submap() {
@@ -159,14 +160,14 @@ TrajectoryNode LoopCloser::node(std::size_t i) const {
 
 Pose2 LoopCloser::node_global(int node) const {
   const auto i = static_cast<std::size_t>(node);
-  return i < optimized_.size() ? optimized_[i] : global_from_local_ * nodes_[i].local;
+  return i < applied_.nodes.size() ? applied_.nodes[i] : applied_.global_from_local * nodes_[i].local;
 }
 
 Pose2 LoopCloser::submap_cells_pose(int submap) const {
   const auto i = static_cast<std::size_t>(submap);
   // Not optimized yet: moved with the rest of the trajectory.
-  if (i >= optimized_submaps_.size()) return global_from_local_;
-  return optimized_submaps_[i] * submaps_[i].anchor.inverse();
+  if (i >= applied_.submaps.size()) return applied_.global_from_local;
+  return applied_.submaps[i] * submaps_[i].anchor.inverse();
 }
 
 std::vector<Pose2> LoopCloser::trajectory() const {
@@ -186,7 +187,8 @@ std::vector<Pose2> LoopCloser::local_trajectory() const {
 
 std::size_t LoopCloser::memory_bytes() const {
   std::size_t n = nodes_.capacity() * sizeof(Node) + scans_.capacity() * sizeof(ScanRecord) +
-                  constraints_.capacity() * sizeof(Constraint) + optimized_.capacity() * sizeof(Pose2);
+                  (constraints_.capacity() + applied_.closures.capacity()) * sizeof(Constraint) +
+                  applied_.nodes.capacity() * sizeof(Pose2);
   for (const Node& node : nodes_)
     if (node.points) n += node.points->memory_bytes();
   for (const SubmapRecord& r : submaps_) n += r.nodes.capacity() * sizeof(int);
@@ -194,44 +196,41 @@ std::size_t LoopCloser::memory_bytes() const {
 }
 
 void LoopCloser::start_round() {
-  if (in_flight_) {
-    executor_->wait();
-    apply_round();
-  }
+  while (static_cast<int>(in_flight_.size()) >= config_.rounds_in_flight) apply_oldest();
   nodes_since_round_ = 0;
   queue_backlog();  // nodes searched before: the new ones search every piece anyway
-  auto round = std::make_unique<Round>();
+  auto round = std::make_shared<Round>();
   RoundInput& in = round->in;
   in.map = map_;
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    in.graph.nodes.push_back(node_global(static_cast<int>(i)));
+    in.node_local.push_back(nodes_[i].local);
     in.node_submap.push_back(nodes_[i].submap);
     in.node_travel.push_back(nodes_[i].travel);
     if (nodes_[i].points && i >= searched_up_to_) in.searches.push_back({static_cast<int>(i), nodes_[i].points});
   }
   searched_up_to_ = nodes_.size();
-  for (std::size_t s = 0; s < submaps_.size(); ++s) {
-    const SubmapRecord& r = submaps_[s];
-    const Pose2 global = submap_cells_pose(static_cast<int>(s)) * r.anchor;
-    in.graph.submaps.push_back(global);
+  for (const SubmapRecord& r : submaps_)
     in.submaps.push_back({r.finished, r.nodes, r.anchor, r.finished ? r.travel_end : travel_, r.fixed});
-  }
   in.graph.constraints = constraints_;
   in.graph.frames = foreign_.frame_poses();
+  in.frame_tied = foreign_.tied();
   in.graph.fixed_submap = 0;
   in.foreign = foreign_.pieces();
   const std::size_t take = std::min(backlog_.size(), static_cast<std::size_t>(config_.foreign_backlog));
   in.backlog.assign(backlog_.begin(), backlog_.begin() + static_cast<std::ptrdiff_t>(take));
   backlog_.erase(backlog_.begin(), backlog_.begin() + static_cast<std::ptrdiff_t>(take));
   in.new_constraints = std::exchange(new_constraints_, false);
-  in.pending = pending_;
-  in.last_closure_travel = last_closure_travel_;
+  // It starts from the round before it, or from what local SLAM holds now.
+  if (!in_flight_.empty())
+    round->previous = in_flight_.back().round;
+  else
+    round->base = applied_;
   Round* job = round.get();
-  in_flight_ = std::move(round);
   const LoopClosureConfig config = config_;
   const PointWeightConfig weights = weights_;
   const std::uint64_t seed = seed_;
-  executor_->submit([job, config, weights, seed] { run_round(*job, config, weights, seed); });
+  const std::uint64_t ticket = executor_->submit([job, config, weights, seed] { run_round(*job, config, weights, seed); });
+  in_flight_.push_back({std::move(round), ticket});
 }
 
 LoopClosure LoopCloser::record(const LoopCandidate& c) const {
@@ -257,35 +256,26 @@ LoopClosure LoopCloser::record(const LoopCandidate& c) const {
   return closure;
 }
 
-void LoopCloser::apply_round() {
-  std::unique_ptr<Round> round = std::move(in_flight_);
-  const RoundOutput& out = round->out;
+void LoopCloser::apply_oldest() {
+  const InFlight oldest = std::move(in_flight_.front());
+  in_flight_.pop_front();
+  executor_->wait_for(oldest.ticket);
+  const RoundOutput& out = oldest.round->out;
   add_stats(stats_, out.stats);
   ++stats_.rounds;
-  pending_ = out.pending;
-  for (const LoopCandidate& c : out.accepted) {
-    constraints_.push_back({c.foreign ? Constraint::Kind::foreign : Constraint::Kind::loop, c.submap, c.node,
-                            c.relative});
-    closures_.push_back(record(c));
-    if (!c.foreign)
-      last_closure_travel_ = std::max(last_closure_travel_, nodes_[static_cast<std::size_t>(c.node)].travel);
-  }
+  for (const LoopCandidate& c : out.accepted) closures_.push_back(record(c));
+  applied_ = out.state;
   if (!out.optimized) return;
   ++stats_.optimizations;
-  optimized_ = out.graph.nodes;
-  optimized_submaps_ = out.graph.submaps;
-  foreign_.apply(out.graph.frames);
-  const Node& last = nodes_[optimized_.size() - 1];
-  global_from_local_ = optimized_.back() * last.local.inverse();
+  foreign_.apply(applied_.frames);
   ++version_;
 }
 
 void LoopCloser::finish(const Submaps& submaps) {
   note_finished(submaps);
   if (!config_.enabled) return;
-  start_round();  // applies the round in flight, hands over what is left
-  executor_->wait();
-  apply_round();
+  start_round();  // hands over what is left
+  while (!in_flight_.empty()) apply_oldest();
 }
 
 }  // namespace dsswarm

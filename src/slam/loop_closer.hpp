@@ -9,15 +9,18 @@
 // shared). It searches (loop_search.hpp), keeps the verified candidates that
 // agree with another closure (pairwise consistency), optimizes with them,
 // drops any that the optimized graph does not bear out, and re-optimizes.
-// Its result is applied when the next round is handed over — all at once,
-// between two scans — so the outcome depends only on the scans, not on how
-// fast the background ran: the same seed gives the same map, on one thread
-// or two.
+// Rounds run one after the other, each starting from what the one before
+// concluded (LoopState). A round's result is applied `rounds_in_flight`
+// hand-overs later — all at once, between two scans — so the background has
+// that long before local SLAM would have to wait, and the outcome depends
+// only on the scans, not on how fast the background ran: the same seed gives
+// the same map, on one thread or two.
 //
 // Local SLAM runs in its own local frame and never jumps; global poses are
 // local poses moved by the optimized graph.
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -92,7 +95,7 @@ class LoopCloser {
   const ForeignMaps& foreign() const { return foreign_; }
 
   // Global pose of a local pose now (as the latest optimization moved the trajectory).
-  Pose2 to_global(const Pose2& local) const { return global_from_local_ * local; }
+  Pose2 to_global(const Pose2& local) const { return applied_.global_from_local * local; }
   // Every scan's best global pose, in process() order.
   std::vector<Pose2> trajectory() const;
   // Every scan's local pose (local SLAM's own estimate), in process() order.
@@ -101,7 +104,7 @@ class LoopCloser {
   Pose2 submap_cells_pose(int submap) const;
   const LoopClosureStats& stats() const { return stats_; }
   const std::vector<LoopClosure>& closures() const { return closures_; }
-  // Bumped whenever an optimization moved poses.
+  // Bumped whenever an optimization moved poses (or other robots' frames).
   std::uint64_t version() const { return version_; }
   std::size_t nodes() const { return nodes_.size(); }
   TrajectoryNode node(std::size_t i) const;
@@ -131,7 +134,7 @@ class LoopCloser {
   void note_finished(const Submaps& submaps);
   void start_round();
   void queue_backlog();
-  void apply_round();
+  void apply_oldest();
   LoopClosure record(const LoopCandidate& c) const;
   Pose2 node_global(int node) const;
 
@@ -144,22 +147,22 @@ class LoopCloser {
   std::vector<Node> nodes_;
   std::vector<SubmapRecord> submaps_;
   std::vector<ScanRecord> scans_;
-  std::vector<Constraint> constraints_;      // local and accepted loop constraints
-  std::vector<Pose2> optimized_;             // global poses of the first optimized_.size() nodes
-  std::vector<Pose2> optimized_submaps_;     // likewise for submaps
-  Pose2 global_from_local_;
-  std::vector<PendingCandidate> pending_;    // verified, waiting for a partner
+  std::vector<Constraint> constraints_;      // local ones and encounters (closures: applied_)
+  LoopState applied_;                        // the latest round's conclusions local SLAM took over
   ForeignMaps foreign_;
   std::vector<std::size_t> new_pieces_;      // foreign pieces not yet searched from earlier nodes
   std::vector<RoundInput::Backlog> backlog_; // those searches, waiting for a round
   bool new_constraints_ = false;             // encounters since the last round
   double travel_ = 0.0;
-  double last_closure_travel_ = -1e9;
   std::optional<Pose2> last_scan_pose_;
   double last_search_travel_ = -1e9;
   std::size_t searched_up_to_ = 0;           // nodes handed to a round for searching
   int nodes_since_round_ = 0;
-  std::unique_ptr<Round> in_flight_;
+  struct InFlight {
+    std::shared_ptr<Round> round;
+    std::uint64_t ticket;
+  };
+  std::deque<InFlight> in_flight_;           // handed over, oldest first
   LoopClosureStats stats_;
   std::vector<LoopClosure> closures_;
   std::uint64_t version_ = 0;

@@ -290,10 +290,45 @@ void optimize_with(const RoundInput& in, const LoopClosureConfig& config, RoundO
   }
 }
 
+// The graph's estimates and closures, from the state the round starts from.
+void complete_input(RoundInput& in, const LoopState& start) {
+  PoseGraph& g = in.graph;
+  g.nodes.resize(in.node_local.size());
+  for (std::size_t i = 0; i < g.nodes.size(); ++i)
+    g.nodes[i] = i < start.nodes.size() ? start.nodes[i] : start.global_from_local * in.node_local[i];
+  g.submaps.resize(in.submaps.size());
+  for (std::size_t s = 0; s < g.submaps.size(); ++s)
+    g.submaps[s] = s < start.submaps.size() ? start.submaps[s] : start.global_from_local * in.submaps[s].anchor;
+  for (std::size_t f = 0; f < g.frames.size() && f < start.frames.size(); ++f)
+    if (in.frame_tied[f]) g.frames[f] = start.frames[f];
+  g.constraints.insert(g.constraints.end(), start.closures.begin(), start.closures.end());
+  in.pending = start.pending;
+  in.last_closure_travel = start.last_closure_travel;
+}
+
+LoopState next_state(const LoopState& start, const RoundInput& in, const RoundOutput& out) {
+  LoopState next = start;
+  next.optimized = out.optimized;
+  for (const LoopCandidate& c : out.accepted) {
+    next.closures.push_back(as_constraint(c));
+    if (!c.foreign)
+      next.last_closure_travel = std::max(next.last_closure_travel, in.node_travel[static_cast<std::size_t>(c.node)]);
+  }
+  next.pending = out.pending;
+  if (out.optimized && !out.graph.nodes.empty()) {
+    next.nodes = out.graph.nodes;
+    next.submaps = out.graph.submaps;
+    next.frames = out.graph.frames;
+    next.global_from_local = next.nodes.back() * in.node_local.back().inverse();
+  }
+  return next;
+}
+
 }  // namespace
 
 void run_round(Round& round, const LoopClosureConfig& config, const PointWeightConfig& weights, std::uint64_t seed) {
   const auto t0 = std::chrono::steady_clock::now();
+  complete_input(round.in, round.previous ? round.previous->out.state : round.base);
   RoundOutput& out = round.out;
   std::vector<LoopCandidate> fresh = search_all(round.in, config, weights, seed, out.stats);
   confirm(round.in, std::move(fresh), config, out);
@@ -302,6 +337,8 @@ void run_round(Round& round, const LoopClosureConfig& config, const PointWeightC
   out.stats.accepted = out.accepted.size();
   out.stats.foreign_accepted = static_cast<std::size_t>(
       std::count_if(out.accepted.begin(), out.accepted.end(), [](const LoopCandidate& c) { return c.foreign; }));
+  out.state = next_state(round.previous ? round.previous->out.state : round.base, round.in, out);
+  round.previous.reset();  // its state is in ours now
   out.stats.background_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

@@ -58,6 +58,10 @@ struct LoopClosureConfig {
   double max_residual_xy = 0.2;        // m
   double max_residual_theta = 0.05;    // rad
   int round_nodes = 20;
+  // Rounds handed over and not yet applied: a round's result is applied when
+  // this many more have been handed over (1: at the next hand-over), so the
+  // background has that long to finish before local SLAM has to wait for it.
+  int rounds_in_flight = 2;
   PoseGraphConfig graph;
 
   void validate() const;  // throws ConfigError naming the field
@@ -87,9 +91,28 @@ struct PendingCandidate {
   int age = 0;  // rounds waited
 };
 
+// What loop closing has concluded so far. Each round starts from its
+// predecessor's (the rounds run one after the other) and local SLAM takes it
+// over when it applies a round.
+struct LoopState {
+  std::vector<Constraint> closures;         // accepted loop closures (own and foreign)
+  std::vector<PendingCandidate> pending;    // verified, waiting for a partner
+  // Optimized global poses of the first nodes.size() nodes, submaps and frames.
+  std::vector<Pose2> nodes, submaps, frames;
+  Pose2 global_from_local;  // moves local SLAM's newer poses into the global frame
+  double last_closure_travel = -1e9;  // m along the trajectory of the latest own closure
+  bool optimized = false;  // the round that made it optimized the graph
+};
+
 struct RoundInput {
   MapConfig map;    // the submaps' (to thaw them)
-  PoseGraph graph;  // estimates and constraints at hand-over
+  // The graph at hand-over: local constraints and encounters, and local
+  // SLAM's node poses; the round completes its estimates and adds the
+  // closures from the state it starts from (graph.frames: the caller's
+  // estimates, used for frames not tied by an encounter).
+  PoseGraph graph;
+  std::vector<Pose2> node_local;
+  std::vector<bool> frame_tied;
   std::vector<int> node_submap;
   std::vector<double> node_travel;
   struct Search {
@@ -105,6 +128,7 @@ struct RoundInput {
     bool fixed = false;       // a given map
   };
   std::vector<SubmapInfo> submaps;
+  // Filled from the state the round starts from.
   std::vector<PendingCandidate> pending;
   double last_closure_travel = -1e9;
   // Other robots' submaps (graph.frames holds their frames), and searches of
@@ -125,10 +149,14 @@ struct RoundOutput {
   bool optimized = false;
   PoseGraph graph;  // the optimized poses (when optimized)
   LoopClosureStats stats;
+  LoopState state;  // what the next round starts from
 };
 
 struct Round {
   RoundInput in;
+  // Where it starts: the round before it (which runs first), or `base`.
+  std::shared_ptr<const Round> previous;
+  LoopState base;
   RoundOutput out;
 };
 

@@ -13,6 +13,7 @@ Round round_with(const std::vector<Pose2>& truth, const std::vector<Constraint>&
   Round round;
   RoundInput& in = round.in;
   in.graph = test::drifting_graph(truth);
+  in.node_local = in.graph.nodes;  // the round's estimates: local SLAM's, nothing optimized yet
   for (std::size_t i = 0; i < truth.size(); ++i) {
     in.node_submap.push_back(static_cast<int>(i) / test::kNodesPerSubmap);
     in.node_travel.push_back(0.5 * static_cast<double>(i));
@@ -29,7 +30,7 @@ Round round_with(const std::vector<Pose2>& truth, const std::vector<Constraint>&
     k.node = c.node;
     k.submap = c.submap;
     k.relative = c.relative;
-    in.pending.push_back({k, 0});
+    round.base.pending.push_back({k, 0});
   }
   return round;
 }
@@ -62,7 +63,7 @@ TEST(LoopRound, ALoneClosureWaitsForAPartnerAndThenExpires) {
   EXPECT_TRUE(round.out.accepted.empty());
   ASSERT_EQ(round.out.pending.size(), 1u);
   Round next = round_with(truth, {});
-  next.in.pending = round.out.pending;
+  next.base = round.out.state;  // the round after it starts where it ended
   run_round(next, config, PointWeightConfig{}, 1);
   EXPECT_TRUE(next.out.pending.empty());
   EXPECT_EQ(next.out.stats.rejected_inconsistent, 1u);
