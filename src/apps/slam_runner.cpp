@@ -100,6 +100,7 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
                          {"inliers", lc.rejected_inliers},
                          {"same_side", lc.rejected_same_side},
                          {"ambiguous", lc.rejected_ambiguous},
+                         {"prior_fits", lc.rejected_prior_fits},
                          {"inconsistent", lc.rejected_inconsistent},
                          {"residual", lc.rejected_residual}}},
                        {"round_seconds", lc.background_seconds}};

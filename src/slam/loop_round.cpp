@@ -117,6 +117,7 @@ void count_rejection(LoopClosureStats& stats, LoopRejection r) {
     case LoopRejection::inliers: ++stats.rejected_inliers; break;
     case LoopRejection::same_side: ++stats.rejected_same_side; break;
     case LoopRejection::ambiguous: ++stats.rejected_ambiguous; break;
+    case LoopRejection::prior_fits: ++stats.rejected_prior_fits; break;
   }
 }
 
@@ -351,6 +352,7 @@ void add_stats(LoopClosureStats& total, const LoopClosureStats& more) {
   total.rejected_inliers += more.rejected_inliers;
   total.rejected_same_side += more.rejected_same_side;
   total.rejected_ambiguous += more.rejected_ambiguous;
+  total.rejected_prior_fits += more.rejected_prior_fits;
   total.rejected_inconsistent += more.rejected_inconsistent;
   total.rejected_residual += more.rejected_residual;
   total.foreign_candidates += more.foreign_candidates;

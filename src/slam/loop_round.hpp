@@ -78,6 +78,7 @@ struct LoopClosureStats {
   std::size_t rejected_inliers = 0;
   std::size_t rejected_same_side = 0;
   std::size_t rejected_ambiguous = 0;
+  std::size_t rejected_prior_fits = 0;    // fits where the node is believed to be, yet matched elsewhere
   std::size_t rejected_inconsistent = 0;  // never found an agreeing partner
   std::size_t rejected_residual = 0;      // not borne out by the optimized graph
   std::size_t foreign_candidates = 0;     // of `candidates`: into other robots' submaps

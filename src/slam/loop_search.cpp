@@ -17,6 +17,7 @@ void LoopSearchConfig::validate() const {
   auto unit = [](double v) { return v >= 0.0 && v <= 1.0; };
   if (!unit(min_known) || !unit(min_inliers) || !unit(min_same_side) || !unit(max_runner_up))
     throw ConfigError("loop_closure.min_known, min_inliers, min_same_side and max_runner_up must be in [0, 1]");
+  if (!unit(min_prior_known)) throw ConfigError("loop_closure.min_prior_known must be in [0, 1]");
   if (!(runner_up_xy > 0.0) || !(runner_up_theta > 0.0))
     throw ConfigError("loop_closure.runner_up_xy and runner_up_theta must be > 0");
   refine.validate();
@@ -30,6 +31,7 @@ const char* to_string(LoopRejection r) {
     case LoopRejection::inliers: return "inliers";
     case LoopRejection::same_side: return "same_side";
     case LoopRejection::ambiguous: return "ambiguous";
+    case LoopRejection::prior_fits: return "prior_fits";
   }
   return "?";
 }
@@ -79,6 +81,15 @@ LoopSearch search_loop_closure(const BranchAndBoundMatcher& matcher, const Subma
   if (second) {
     c.runner_up = second->score / best->score;
     return {LoopRejection::ambiguous, c};
+  }
+  const Pose2 believed = refiner.match(submap.map, near, prior).pose;
+  const Pose2 jump = between(believed, pose);
+  if (std::hypot(jump.x, jump.y) > config.runner_up_xy || std::abs(jump.theta) > config.runner_up_theta) {
+    const MatchQuality at_prior = match_quality(submap.map.finest(), near, believed);
+    c.prior_known = at_prior.known_fraction;
+    c.prior_inliers = at_prior.inlier_ratio;
+    if (c.prior_known >= config.min_prior_known && c.prior_inliers >= config.min_inliers)
+      return {LoopRejection::prior_fits, c};
   }
   out.rejection = LoopRejection::none;
   return out;

@@ -12,7 +12,12 @@
 //   4. the obstacles are approached through space the submap saw free
 //      (`min_same_side`, same_side_ratio): not a thin wall seen from behind;
 //   5. no distinct pose in the window scores nearly as well (`max_runner_up`):
-//      corridors and symmetric rooms fit several ways.
+//      corridors and symmetric rooms fit several ways;
+//   6. the scan does not also fit where the node is believed to be (refined
+//      there, at least `min_prior_known` of it on mapped cells and
+//      `min_inliers` of those on obstacles) while the match lies elsewhere:
+//      a scan that only grazes the submap scores higher slid onto it (more
+//      of it on mapped cells), but where it already fits nothing asks for a jump.
 //
 // Whether it agrees with the other closures is the caller's question
 // (closures_agree, below).
@@ -46,11 +51,12 @@ struct LoopSearchConfig {
   double max_runner_up = 0.9;
   double runner_up_xy = 0.5;      // m
   double runner_up_theta = 0.26;  // rad (15°)
+  double min_prior_known = 0.1;
 
   void validate() const;  // throws ConfigError naming the field
 };
 
-enum class LoopRejection : std::uint8_t { none, no_match, unknown, inliers, same_side, ambiguous };
+enum class LoopRejection : std::uint8_t { none, no_match, unknown, inliers, same_side, ambiguous, prior_fits };
 const char* to_string(LoopRejection r);
 
 struct LoopCandidate {
@@ -63,6 +69,8 @@ struct LoopCandidate {
   double inliers = 0.0;
   double same_side = 0.0;
   double runner_up = 0.0;   // runner-up score / best score (0: none above the bar)
+  double prior_known = 0.0; // match_quality where the node is believed to be (refined there)
+  double prior_inliers = 0.0;
 };
 
 struct LoopSearch {

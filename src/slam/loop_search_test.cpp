@@ -34,9 +34,10 @@ Submap submap_of(const World& world, const std::vector<Pose2>& path, Rng& rng, d
   return s;
 }
 
-LoopSearch search(const Submap& s, const std::vector<ScanPoint>& points, const Pose2& prior, const SearchWindow& w) {
-  const BranchAndBoundMatcher matcher(s.map.finest(), w.xy, LoopSearchConfig{}.max_depth);
-  return search_loop_closure(matcher, s, points, prior, w, LoopSearchConfig{}, 7);
+LoopSearch search(const Submap& s, const std::vector<ScanPoint>& points, const Pose2& prior, const SearchWindow& w,
+                  const LoopSearchConfig& config = {}) {
+  const BranchAndBoundMatcher matcher(s.map.finest(), w.xy, config.max_depth);
+  return search_loop_closure(matcher, s, points, prior, w, config, 7);
 }
 
 TEST(LoopSearch, FindsTheNodeInTheSubmapFromAPriorOffByHalfAMetre) {
@@ -93,6 +94,37 @@ TEST(LoopSearch, AFeaturelessCorridorIsAmbiguous) {
   const LoopSearch r = search(s, scan_at(corridor, truth, rng, 6.0), truth * Pose2(0.5, 0.0, 0.0), {1.5, 0.1});
   EXPECT_EQ(r.rejection, LoopRejection::ambiguous) << to_string(r.rejection);
   EXPECT_GT(r.candidate.runner_up, 0.9);
+}
+
+TEST(LoopSearch, AScanThatOnlyGrazesTheSubmapIsNotSlidOntoIt) {
+  // A corridor with a niche every 3 m. The submap saw it from x = 6 to 12,
+  // looking ahead; the robot comes back from behind, at x = 1: only the far
+  // end of its scan reaches what the submap saw. One niche further on, all
+  // of the scan lands on mapped cells and fits as well as it does here.
+  std::vector<Segment> walls{{{-10, 0}, {40, 0}}, {{-10, 2}, {40, 2}}};
+  for (double x = -9; x < 40; x += 3.0) {
+    walls.push_back({{x, 2}, {x, 2.6}});
+    walls.push_back({{x, 2.6}, {x + 0.8, 2.6}});
+    walls.push_back({{x + 0.8, 2.6}, {x + 0.8, 2}});
+  }
+  const World corridor(std::move(walls));
+  Rng rng(5);
+  std::vector<Pose2> path;
+  for (double x = 6; x <= 12; x += 0.5) path.push_back(Pose2(x, 1, 0));
+  const Submap s = submap_of(corridor, path, rng, 8.0);
+  const Pose2 truth(1.0, 1.0, 0.0);
+  const std::vector<ScanPoint> points = scan_at(corridor, truth, rng, 8.0);
+  const SearchWindow window{4.0, 0.1};
+  const LoopSearch r = search(s, points, truth, window);
+  EXPECT_EQ(r.rejection, LoopRejection::prior_fits) << to_string(r.rejection);
+  EXPECT_GE(r.candidate.prior_inliers, 0.75);
+  // Without the check, the scan would be slid a niche along onto the submap.
+  LoopSearchConfig unchecked;
+  unchecked.min_prior_known = 1.0;
+  const LoopSearch slid = search(s, points, truth, window, unchecked);
+  ASSERT_EQ(slid.rejection, LoopRejection::none) << to_string(slid.rejection);
+  const Pose2 e = between(between(s.anchor, truth), slid.candidate.relative);
+  EXPECT_GT(std::hypot(e.x, e.y), 1.0);
 }
 
 TEST(LoopSearch, ClosuresAgreeWhenTheyImplyTheSameMotion) {
