@@ -3,8 +3,9 @@
 // accepted loop closure checked against the truth: its pose relative to the
 // submap's node nearest to it, against the true relative pose of the two
 // scans (false beyond 0.2 m or 2 degrees). Prints one line per seed and a
-// summary; not a test.
-// Usage: build/bench/loop_closure_bench [first_seed] [last_seed] [scene: loop|building]
+// summary with the searches' outcomes; not a test.
+// Usage: build/bench/loop_closure_bench [first_seed] [last_seed] [scene: loop|building] [lidar range, m]
+// (default range 8 m: a room or a stretch of corridor at a time).
 #include <fmt/core.h>
 
 #include <cstdlib>
@@ -23,23 +24,22 @@ using namespace dsswarm;
 constexpr double kFalseXy = 0.2;                            // m
 constexpr double kFalseTheta = 2.0 * std::numbers::pi / 180.0;  // rad
 
-SimulatedRun simulate(const std::string& scene, std::uint64_t seed) {
+SimulatedRun simulate(const std::string& scene, std::uint64_t seed, double range) {
   if (scene == "building") {
     DemoConfig demo;
     demo.world.seed = seed;
     demo.seed = seed;
-    demo.lidar.range_max = 8.0;  // sees a room or a stretch of corridor, not the building
+    demo.lidar.range_max = range;
     return simulate_demo(demo);
   }
   LoopWorldConfig config;
   config.seed = seed;
   const LoopWorld w = make_loop_world(config);
   LidarConfig lidar;
-  lidar.range_max = 8.0;
+  lidar.range_max = range;
   lidar.noise_std = 0.02;
   RobotConfig robot;
-  robot.odom_drift = std::getenv("DRIFT") ? std::atof(std::getenv("DRIFT")) : 0.02;
-  if (std::getenv("RANGE")) lidar.range_max = std::atof(std::getenv("RANGE"));
+  robot.odom_drift = 0.02;
   return simulate_run(w.world, w.tour, w.start, robot, lidar, seed);
 }
 
@@ -54,10 +54,12 @@ Trajectory stamped(const SimulatedRun& run, const std::vector<Pose2>& poses) {
 int main(int argc, char** argv) {
   const int first = argc > 1 ? std::atoi(argv[1]) : 1, last = argc > 2 ? std::atoi(argv[2]) : 10;
   const std::string scene = argc > 3 ? argv[3] : "loop";
-  std::size_t accepted = 0, wrong = 0, tried = 0;
+  const double range = argc > 4 ? std::atof(argv[4]) : 8.0;
+  std::size_t accepted = 0, wrong = 0;
+  LoopClosureStats all;
   double worst_ate = 0.0, worst_closure = 0.0;
   for (int seed = first; seed <= last; ++seed) {
-    const SimulatedRun run = simulate(scene, static_cast<std::uint64_t>(seed));
+    const SimulatedRun run = simulate(scene, static_cast<std::uint64_t>(seed), range);
     Trajectory truth;
     for (const auto& [t, p] : run.ground_truth) truth.push_back({t, p});
     SlamConfig config = with_loop_closure();
@@ -81,13 +83,17 @@ int main(int argc, char** argv) {
                "({} candidates), {} false, largest error {:.3f} m\n",
                scene, seed, run.log.scans.size(), local, closed, st.accepted, st.searches, st.candidates, bad, largest);
     accepted += st.accepted;
-    tried += st.searches;
+    add_stats(all, st);
     wrong += bad;
     worst_ate = std::max(worst_ate, closed);
     worst_closure = std::max(worst_closure, largest);
   }
-  fmt::print("{} seeds {}-{}: {} closures accepted of {} searches, {} false; worst ATE {:.3f} m, worst closure error "
-             "{:.3f} m\n",
-             scene, first, last, accepted, tried, wrong, worst_ate, worst_closure);
+  fmt::print("{} seeds {}-{} ({} m lidar): {} closures accepted of {} searches, {} false; worst ATE {:.3f} m, worst "
+             "closure error {:.3f} m\n",
+             scene, first, last, range, accepted, all.searches, wrong, worst_ate, worst_closure);
+  fmt::print("searches: {} verified; rejected: no match {}, unknown {}, inliers {}, same side {}, ambiguous {}, prior "
+             "fits {}; of the verified, inconsistent {}, residual {}\n",
+             all.candidates, all.rejected_no_match, all.rejected_unknown, all.rejected_inliers, all.rejected_same_side,
+             all.rejected_ambiguous, all.rejected_prior_fits, all.rejected_inconsistent, all.rejected_residual);
   return 0;
 }
