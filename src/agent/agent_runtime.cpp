@@ -37,14 +37,14 @@ AgentOptions resolved(AgentOptions o) {
   return o;
 }
 
-std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, std::uint64_t& scans_before,
+std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, Executor& background, std::uint64_t& scans_before,
                                        std::optional<double>& resumed_at, Trajectory& trajectory) {
   const SlamConfig slam = agent_slam_config(o.swarm.slam, o.name);
   if (!o.resume) {
     if (const auto previous = set_aside_checkpoint(o.out))
       spdlog::warn("{}: starting afresh (no --resume): the checkpoint of the earlier run is kept in {}", o.name,
                    previous->string());
-    return std::make_unique<SwarmAgent>(o.name, slam);
+    return std::make_unique<SwarmAgent>(o.name, slam, &background);
   }
   Checkpoint c = read_checkpoint(o.out, o.name);
   spdlog::info("{}: resuming from {} ({} scans, {} layers, pose {:.2f} {:.2f} {:.2f})", o.name, o.out.string(),
@@ -52,7 +52,7 @@ std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, std::uint64_t& sca
   scans_before = c.scans_processed;
   if (!c.trajectory.empty()) resumed_at = c.trajectory.back().timestamp;
   trajectory = std::move(c.trajectory);
-  return std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose);
+  return std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose, &background);
 }
 
 std::uint64_t encounter_of(const protocol::Body& body) {
@@ -75,7 +75,7 @@ AgentRuntime::AgentRuntime(AgentOptions options, ScanFeed& feed, protocol::Swarm
       triggers_(std::chrono::milliseconds(static_cast<long>(options_.trigger_patience * 1000.0))),
       heartbeats_(options_.name, options_.incarnation) {
   Trajectory trajectory;
-  shared_ = std::make_unique<SharedAgent>(make_agent(options_, scans_before_, resumed_at_, trajectory),
+  shared_ = std::make_unique<SharedAgent>(make_agent(options_, loop_closing_, scans_before_, resumed_at_, trajectory),
                                           options_.swarm.encounter.locate);
   shared_->restore_trajectory(std::move(trajectory));
   engine_ = std::make_unique<protocol::EncounterEngine>(options_.name, options_.swarm, *shared_, options_.incarnation);
@@ -382,6 +382,7 @@ void AgentRuntime::checkpoint(bool wait) {
 }
 
 void AgentRuntime::write_outputs() {
+  shared_->finish();
   checkpoint(true);
   const AgentReport r = report();
   shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {

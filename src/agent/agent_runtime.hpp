@@ -29,6 +29,7 @@
 #include "grid/grid_raster.hpp"
 #include "protocol/gate.hpp"
 #include "protocol/link.hpp"
+#include "runtime/worker_thread.hpp"
 
 namespace dsswarm::agent {
 
@@ -113,6 +114,7 @@ class AgentRuntime {
   protocol::SwarmLink& link_;
   RobotOutputs* outputs_;
   SteadyClock::time_point started_;
+  WorkerThread loop_closing_;  // the robot's loop-closing rounds, off the scan path (outlives shared_)
   std::unique_ptr<SharedAgent> shared_;
   std::uint64_t scans_before_ = 0;  // processed in earlier runs (resumed)
   std::optional<double> resumed_at_;  // stamp of the checkpoint's last pose (resumed)

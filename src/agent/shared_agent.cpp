@@ -29,6 +29,20 @@ SlamStep SharedAgent::process(const LaserScan& scan) {
   return step;
 }
 
+void SharedAgent::finish() {
+  std::lock_guard lock(mutex_);
+  agent_->finish();
+}
+
+Trajectory SharedAgent::optimized_trajectory() const {
+  Trajectory t = trajectory_;
+  // This run's scans are the last ones (an earlier run's come first).
+  const std::vector<Pose2> optimized = agent_->slam().trajectory();
+  const std::size_t base = t.size() >= optimized.size() ? t.size() - optimized.size() : 0;
+  for (std::size_t k = 0; k < optimized.size() && base + k < t.size(); ++k) t[base + k].pose = optimized[k];
+  return t;
+}
+
 protocol::CapturedView SharedAgent::capture_locked() const {
   // The engine works on the view while scans keep changing the map: it gets
   // its own frozen copy.

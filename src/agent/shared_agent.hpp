@@ -42,16 +42,20 @@ class SharedAgent : public protocol::AgentPort {
   std::optional<Pose2> known_frame(const std::string& origin) const override;
   void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) override;
 
-  // Reads under the lock.
+  // Reads under the lock; the trajectory has this run's poses as loop
+  // closing last optimized them.
   template <class F>
   auto with_agent(F&& f) const {
     std::lock_guard lock(mutex_);
-    return f(*agent_, trajectory_);
+    return f(*agent_, optimized_trajectory());
   }
+  // Loop closing's last round (at exit): then the outputs reflect every scan.
+  void finish();
   bool composing() const;
 
  private:
   protocol::CapturedView capture_locked() const;
+  Trajectory optimized_trajectory() const;  // under the lock
   void compose_loop();
 
   mutable std::mutex mutex_;

@@ -136,6 +136,13 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
     for (const PoseRevision& r : track.steps.back().revised) track.steps[r.index].pose = r.pose;
     if (progress && ++done % report_every == 0) progress(done, total);
   }
+  // The poses as loop closing last optimized them, like `run` writes.
+  for (std::size_t i = 0; i < agents_.size(); ++i) {
+    agents_[i]->finish();
+    const std::vector<Pose2> optimized = agents_[i]->slam().trajectory();
+    for (std::size_t k = 0; k < optimized.size() && k < tracks_[i].steps.size(); ++k)
+      tracks_[i].steps[k].pose = optimized[k];
+  }
   if (progress) progress(total, total);
 }
 

@@ -62,7 +62,8 @@ class SwarmSession {
   SwarmSession(std::vector<AgentStream> streams, std::vector<EncounterEvent> events, const SwarmConfig& config);
   ~SwarmSession();
 
-  // Plays everything. `progress(done_scans, total_scans)` is called now and then.
+  // Plays everything, then finishes each robot's loop closing (its track gets
+  // the optimized poses). `progress(done_scans, total_scans)` is called now and then.
   void run(const std::function<void(std::size_t, std::size_t)>& progress = {});
 
   std::size_t agents() const { return agents_.size(); }

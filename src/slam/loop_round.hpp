@@ -16,7 +16,7 @@
 namespace dsswarm {
 
 struct LoopClosureConfig {
-  bool enabled = false;  // off by default: docs/loop_closure.md
+  bool enabled = true;  // off: one map, no submaps (docs/loop_closure.md)
   // A scan inserted into a submap becomes a trajectory node when the robot
   // moved this much since the last node (and always the first of a submap).
   // The first `overlap_nodes` nodes of a submap are also tied into the

@@ -62,7 +62,7 @@ struct SlamConfig {
   int pause_after_still_scans = 20;  // 0: never pause
   InsertConfig insert;
   // Submaps are what loop closure works on, so they are used only with it
-  // (loop_closure.enabled, off by default): without it one map, which local
+  // (loop_closure.enabled, on by default): without it one map, which local
   // SLAM matches better against on revisits (figures in docs/loop_closure.md).
   SubmapConfig submaps{.max_scans = 150, .max_travel = 15.0};
   LoopClosureConfig loop_closure;

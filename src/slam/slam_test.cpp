@@ -87,8 +87,8 @@ TEST(Slam, CorrectsDriftingOdometry) {
   EXPECT_EQ(slam.scans_matched(), d.scans.size() - 1);
 }
 
-// Loop closure is off by default: one map, as before submaps; on, the same
-// drive is cut into submaps and searched for closures.
+// Loop closure is on by default: the drive is cut into submaps and searched
+// for closures; off, one map, as before submaps.
 TEST(Slam, SubmapsOnlyWithLoopClosure) {
   const Drive d = drive();
   SlamConfig on = with_loop_closure();
@@ -105,7 +105,7 @@ TEST(Slam, SubmapsOnlyWithLoopClosure) {
   EXPECT_TRUE(without.submaps().finished().empty());
   EXPECT_EQ(without.loop_closer().stats().searches, 0u);
   EXPECT_GT(with.submaps().finished().size(), 2u);
-  EXPECT_FALSE(SlamConfig{}.loop_closure.enabled);
+  EXPECT_TRUE(SlamConfig{}.loop_closure.enabled);
 }
 
 TEST(Slam, WorksWithoutOdometry) {

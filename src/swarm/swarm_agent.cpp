@@ -27,12 +27,14 @@ SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
   return c;
 }
 
-SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config)
-    : name_(std::move(name)), slam_(config), knowledge_(name_) {}
+SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, Executor* background)
+    : name_(std::move(name)), slam_(config, background), knowledge_(name_) {}
 
-SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose)
+SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose,
+                       Executor* background)
     : name_(std::move(name)),
-      slam_(config, own_layer_of(saved, name_).map ? MultiResMap(*own_layer_of(saved, name_).map) : MultiResMap(config.map), pose),
+      slam_(config, own_layer_of(saved, name_).map ? MultiResMap(*own_layer_of(saved, name_).map) : MultiResMap(config.map), pose,
+            MapUse::extend, background),
       knowledge_(name_),
       version_base_(own_layer_of(saved, name_).version) {
   knowledge_.restore(saved);

@@ -21,13 +21,19 @@ SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name);
 
 class SwarmAgent {
  public:
-  SwarmAgent(std::string name, const SlamConfig& config);
+  // `background` runs loop closing (not owned, must outlive the agent;
+  // nullptr: on the scan thread). The results are the same either way.
+  SwarmAgent(std::string name, const SlamConfig& config, Executor* background = nullptr);
   // Continues from a saved snapshot (a checkpoint): its own layer is the map
   // it goes on mapping in, from `pose` (a wide search places the first scan);
   // the others are what it knew. Its own map's version goes on from the saved one.
-  SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose);
+  SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose,
+             Executor* background = nullptr);
 
   SlamStep process(const LaserScan& scan);
+  // Waits for loop closing and runs its last round: the trajectory and the
+  // own map then reflect every scan (Slam::finish). Processing may go on after.
+  void finish() { slam_.finish(); }
 
   // What this robot puts on the table at an encounter.
   // Working map, current scan, pose and surroundings (as `config` asks).
