@@ -151,8 +151,14 @@ void add_run_command(CLI::App& app) {
 }
 
 void add_config_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("config", "Print the default configuration (JSON, for --config): SLAM and swarm sections");
-  cmd->callback([] { fmt::print("{}\n", to_json(SwarmConfig{}).dump(2)); });
+  CLI::App* cmd = app.add_subcommand("config",
+                                     "Print the default configuration (JSON, for --config): SLAM and swarm sections, "
+                                     "as `run` uses them (swarm, demo and agent: loop_closure.enabled is false)");
+  cmd->callback([] {
+    SwarmConfig defaults;
+    defaults.slam = SlamConfig{};
+    fmt::print("{}\n", to_json(defaults).dump(2));
+  });
 }
 
 }  // namespace dsswarm

@@ -41,10 +41,15 @@ CLI::Validator non_negative_integer() {
       "");
 }
 
-SlamConfig SlamOptions::resolve() const { return resolve_swarm().slam; }
+SlamConfig SlamOptions::resolve() const {
+  SwarmConfig single;
+  single.slam = SlamConfig{};  // one robot: loop closure on (the swarm's default is off, swarm_config.hpp)
+  return resolve(std::move(single)).slam;
+}
 
-SwarmConfig SlamOptions::resolve_swarm() const {
-  SwarmConfig swarm;
+SwarmConfig SlamOptions::resolve_swarm() const { return resolve(SwarmConfig{}); }
+
+SwarmConfig SlamOptions::resolve(SwarmConfig swarm) const {
   if (!config_file.empty()) load_config(config_file, swarm);
   SlamConfig& c = swarm.slam;
   if (seed) c.seed = *seed;

@@ -23,6 +23,9 @@ struct SlamOptions {
   SlamConfig resolve() const;
   // The same with the config file's swarm sections (encounter, swarm).
   SwarmConfig resolve_swarm() const;
+
+ private:
+  SwarmConfig resolve(SwarmConfig defaults) const;  // the file, then the flags, over `defaults`
 };
 
 void add_slam_options(CLI::App& command, SlamOptions& options);

@@ -122,6 +122,16 @@ TEST(SwarmConfigJson, ParsesTextInMemoryAsItLoadsFiles) {
   }
 }
 
+// One robot maps with loop closure by default; the swarm without, until
+// encounters follow the pose graph (swarm_config.hpp). A file turns it on.
+TEST(SwarmConfigJson, LoopClosureIsOnForOneRobotOffForTheSwarmAndAFileTurnsItOn) {
+  EXPECT_TRUE(SlamConfig{}.loop_closure.enabled);
+  SwarmConfig c;
+  EXPECT_FALSE(c.slam.loop_closure.enabled);
+  parse_config(R"({"loop_closure": {"enabled": true}})", "inline.json", c);
+  EXPECT_TRUE(c.slam.loop_closure.enabled);
+}
+
 // Found by fuzzing (fuzz/config.cpp): nlohmann's parser reports a number too
 // large for a double as out_of_range, not parse_error, which escaped as a
 // plain std::exception.

@@ -33,6 +33,11 @@ SlamConfig with_loop_closure(SlamConfig config) {
   return config;
 }
 
+SlamConfig without_loop_closure(SlamConfig config) {
+  config.loop_closure.enabled = false;
+  return config;
+}
+
 namespace {
 const SlamConfig& validated(const SlamConfig& config) {
   config.validate();

@@ -89,6 +89,7 @@ struct SlamStep {
 // What a given map is for.
 // `config` with loop closure on (submaps, loop-closure rounds, pose graph).
 SlamConfig with_loop_closure(SlamConfig config = {});
+SlamConfig without_loop_closure(SlamConfig config = {});
 
 enum class MapUse {
   extend,    // keep mapping in it (new evidence in new submaps)

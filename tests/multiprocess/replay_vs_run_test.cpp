@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <iterator>
 #include <iostream>
 #include <sstream>
@@ -46,12 +47,18 @@ std::string describe(const Difference& d) {
 
 class ReplayVsRun {
  public:
-  ReplayVsRun(Rig& rig, fs::path log) : rig_(rig), log_(std::move(log)), scans_(read_log(log_).scans.size()) {}
+  // Both with loop closure on (a robot's default is off, run's on), so that
+  // the agent's background loop closing and its optimized trajectory are
+  // what is compared.
+  ReplayVsRun(Rig& rig, fs::path log)
+      : rig_(rig), log_(std::move(log)), scans_(read_log(log_).scans.size()), config_(rig_.dir() / "loop_closure.json") {
+    std::ofstream(config_) << R"({"loop_closure": {"enabled": true}})";
+  }
 
   // `dsswarm run LOG [--seed S]`: its trajectory.
   Trajectory run(const std::string& name, const std::vector<std::string>& extra = {}) {
     const fs::path out = rig_.dir() / name;
-    std::vector<std::string> args{"run", log_.string(), "--out", out.string()};
+    std::vector<std::string> args{"run", log_.string(), "--out", out.string(), "--config", config_.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const std::size_t p = rig_.start(name, args);
     EXPECT_EQ(rig_.wait(p, 180s), 0);
@@ -69,7 +76,7 @@ class ReplayVsRun {
     const std::size_t agent =
         rig_.start("agent", {"agent", "--name", "robot1", "--out", out.string(), "--namespace", ns, "--ros-domain",
                              ros_domain, "--swarm-domain", swarm_domain, "--interface", "lo",
-                             "--no-ros-output", "--queue", "10000"});
+                             "--no-ros-output", "--queue", "10000", "--config", config_.string()});
     const std::size_t replay =
         rig_.start("replay", {"replay", log_.string(), "--namespace", ns, "--domain", ros_domain, "--interface", "lo",
                               "--rate", fmt::format("{}", rate), "--wait-for-subscribers", "1", "--wait-timeout", "60"});
@@ -108,6 +115,7 @@ class ReplayVsRun {
   Rig& rig_;
   fs::path log_;
   std::size_t scans_;
+  fs::path config_;
 };
 
 // Replays `log` at `rate` into an agent named robot1 and compares its
