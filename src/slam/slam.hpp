@@ -86,11 +86,12 @@ struct SlamStep {
   std::vector<PoseRevision> revised;
 };
 
-// What a given map is for.
-// `config` with loop closure on (submaps, loop-closure rounds, pose graph).
+// `config` with loop closure on (submaps, loop-closure rounds, pose graph),
+// or off (one map).
 SlamConfig with_loop_closure(SlamConfig config = {});
 SlamConfig without_loop_closure(SlamConfig config = {});
 
+// What a given map is for.
 enum class MapUse {
   extend,    // keep mapping in it (new evidence in new submaps)
   localize,  // localize in it; it never changes
