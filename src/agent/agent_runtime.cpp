@@ -159,7 +159,7 @@ void AgentRuntime::after_scan(const LaserScan& scan, const SlamStep& step) {
   if (outputs_) {
     outputs_->pose(scan.timestamp, step.pose, scan.odometry);
     if (outputs_->map_due(t))
-      outputs_->map(shared_->with_agent([](const SwarmAgent& a, const Trajectory&) { return a.slam().map().finest().to_raster(); }),
+      outputs_->map(shared_->with_agent([](const SwarmAgent& a) { return a.slam().map().finest().to_raster(); }),
                     scan.timestamp);
   }
   if (options_.checkpoint_period > 0.0 && now() - last_checkpoint_ >= options_.checkpoint_period) {
@@ -309,7 +309,7 @@ protocol::AgentStatus AgentRuntime::status(double t) const {
   s.encounters_accepted = accepted_.load();
   s.last_merge_age = last_merge_.load() >= 0.0 ? t - last_merge_.load() : -1.0;
   s.messages_rejected = messages_rejected_.load();
-  shared_->with_agent([&](const SwarmAgent& a, const Trajectory&) {
+  shared_->with_agent([&](const SwarmAgent& a) {
     s.peers_known = static_cast<std::uint32_t>(a.knowledge().size());
     s.map_version = a.own_version();
     return 0;
@@ -359,7 +359,7 @@ void AgentRuntime::checkpoint(bool wait) {
     if (!wait && !checkpoint_written_) return;  // the last one is still being written: skip this round
     checkpoint_writer_.join();
   }
-  Checkpoint c = shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {
+  Checkpoint c = shared_->with_trajectory([&](const SwarmAgent& a, const Trajectory& trajectory) {
     Checkpoint k;
     k.name = options_.name;
     k.snapshot = a.snapshot();
@@ -385,7 +385,7 @@ void AgentRuntime::write_outputs() {
   shared_->finish();
   checkpoint(true);
   const AgentReport r = report();
-  shared_->with_agent([&](const SwarmAgent& a, const Trajectory& trajectory) {
+  shared_->with_trajectory([&](const SwarmAgent& a, const Trajectory& trajectory) {
     write_agent_files(options_.out, a, trajectory, r, options_.swarm);
     return 0;
   });

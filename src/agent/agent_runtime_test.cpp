@@ -131,7 +131,7 @@ TEST(AgentRuntime, RobotsOnTheirOwnThreadsDecideAsTheInProcessSwarmDoes) {
     EXPECT_TRUE(fs::exists(out / robot / "merged_map.yaml"));
     EXPECT_TRUE(fs::exists(out / robot / "encounters.json"));
   }
-  EXPECT_EQ(live.runtimes[0]->agent().with_agent([](const SwarmAgent& a, const Trajectory&) { return a.knowledge().size(); }), 1u);
+  EXPECT_EQ(live.runtimes[0]->agent().with_agent([](const SwarmAgent& a) { return a.knowledge().size(); }), 1u);
 }
 
 TEST(AgentRuntime, GarbageAndReplayedMessagesAreCountedAndChangeNothing) {

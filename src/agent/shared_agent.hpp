@@ -42,10 +42,16 @@ class SharedAgent : public protocol::AgentPort {
   std::optional<Pose2> known_frame(const std::string& origin) const override;
   void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) override;
 
-  // Reads under the lock; the trajectory has this run's poses as loop
-  // closing last optimized them.
+  // Reads under the lock.
   template <class F>
   auto with_agent(F&& f) const {
+    std::lock_guard lock(mutex_);
+    return f(*agent_);
+  }
+  // The same with the trajectory, this run's poses as loop closing last
+  // optimized them (a copy: for outputs and checkpoints, not every scan).
+  template <class F>
+  auto with_trajectory(F&& f) const {
     std::lock_guard lock(mutex_);
     return f(*agent_, optimized_trajectory());
   }
