@@ -1,3 +1,24 @@
+# With DSSWARM_TESTS=system, whether any of the sources defines a real-data or
+# multi-process test (a TEST/TEST_F/TEST_P whose name says so, as the ctest
+# filters of scripts/test.sh match it); always true otherwise. The sources
+# become configure dependencies, so a test added or renamed later is seen.
+function(dsswarm_holds_system_tests out)
+  if(NOT DSSWARM_TESTS STREQUAL "system")
+    set(${out} TRUE PARENT_SCOPE)
+    return()
+  endif()
+  set(found FALSE)
+  foreach(src IN LISTS ARGN)
+    cmake_path(ABSOLUTE_PATH src BASE_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${src})
+    file(STRINGS ${src} hits REGEX "TEST(_F|_P)?\\([^)]*(RealData|MultiProcess)")
+    if(hits)
+      set(found TRUE)
+    endif()
+  endforeach()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
 # dsswarm_test(NAME SOURCES a_test.cpp ... LIBS lib ...)
 # A GoogleTest executable registered with ctest; each TEST becomes one ctest case.
 function(dsswarm_test name)
@@ -5,6 +26,10 @@ function(dsswarm_test name)
     return()
   endif()
   cmake_parse_arguments(T "" "" "SOURCES;LIBS" ${ARGN})
+  dsswarm_holds_system_tests(wanted ${T_SOURCES})
+  if(NOT wanted)
+    return()
+  endif()
   add_executable(${name} ${T_SOURCES})
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
