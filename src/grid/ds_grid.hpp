@@ -50,7 +50,7 @@ class DsGrid {
   // Read access; cells never written are vacuous (all unknown).
   DsMass at(CellIndex c) const {
     const Tile* t = find_tile(c);
-    return t ? t->cells[local_index(c)].mass() : DsMass::vacuous();
+    return t ? t->cells[local_index(c)] : DsMass::vacuous();
   }
   // Occupancy in [0, 1] (unknown counts 0.5): the value the matcher reads.
   float occupancy(CellIndex c) const { return at(c).occupancy(); }
@@ -66,11 +66,11 @@ class DsGrid {
         out[0] = out[1] = out[2] = out[3] = DsMass::vacuous();
         return;
       }
-      const PackedMass* base = &t->cells[static_cast<std::size_t>(local_index(c))];
-      out[0] = base[0].mass();
-      out[1] = base[1].mass();
-      out[2] = base[kTileSize].mass();
-      out[3] = base[kTileSize + 1].mass();
+      const DsMass* base = &t->cells[static_cast<std::size_t>(local_index(c))];
+      out[0] = base[0];
+      out[1] = base[1];
+      out[2] = base[kTileSize];
+      out[3] = base[kTileSize + 1];
       return;
     }
     out[0] = at(c);
@@ -79,14 +79,12 @@ class DsGrid {
     out[3] = at({c.x + 1, c.y + 1});
   }
 
-  // Write access: cell c becomes update(its masses); allocates the tile if needed.
-  template <typename F>
-  void update(CellIndex c, F&& update) {
-    PackedMass& cell = mutable_cell(c);
-    cell = PackedMass::pack(update(cell.mass()));
+  // Write access: allocates the tile if needed.
+  DsMass& mutable_at(CellIndex c) {
+    // Inline when the tile exists (insertion writes mostly into existing tiles).
+    if (Tile* t = find_tile(c)) return t->cells[local_index(c)];
+    return get_or_create_tile(c).cells[local_index(c)];
   }
-  void set(CellIndex c, const DsMass& m) { mutable_cell(c) = PackedMass::pack(m); }
-  void set_packed(CellIndex c, PackedMass m) { mutable_cell(c) = m; }
 
   std::size_t tiles_allocated() const { return tiles_.size(); }
   std::size_t cells_allocated() const { return tiles_.size() * kTileCells; }
@@ -105,7 +103,7 @@ class DsGrid {
     return {origin.x + (i & (kTileSize - 1)), origin.y + (i >> kTileBits)};
   }
 
-  // Visits every allocated tile: f(tile_origin_cell, const PackedMass* cells[kTileCells]).
+  // Visits every allocated tile: f(tile_origin_cell, const DsMass* cells[kTileCells]).
   template <typename F>
   void for_each_tile(F&& f) const {
     for (const auto& t : tiles_) f(CellIndex{t->origin.x, t->origin.y}, t->cells.data());
@@ -114,14 +112,8 @@ class DsGrid {
  private:
   struct Tile {
     CellIndex origin;  // index of its lower-left cell
-    std::array<PackedMass, kTileCells> cells{};
+    std::array<DsMass, kTileCells> cells{};
   };
-
-  PackedMass& mutable_cell(CellIndex c) {
-    // Inline when the tile exists (insertion writes mostly into existing tiles).
-    if (Tile* t = find_tile(c)) return t->cells[local_index(c)];
-    return get_or_create_tile(c).cells[local_index(c)];
-  }
 
   static int local_index(CellIndex c) {
     return ((c.y & (kTileSize - 1)) << kTileBits) | (c.x & (kTileSize - 1));

@@ -3,7 +3,6 @@
 // Focal sets: {occupied}, {free}, and Θ = {occupied, free} ("unknown").
 // Only occupied and free are stored; unknown = 1 − occupied − free.
 #include <algorithm>
-#include <cstdint>
 
 namespace dsswarm {
 
@@ -17,32 +16,6 @@ struct DsMass {
   constexpr float occupancy() const { return 0.5f + 0.5f * (occupied - free); }
 
   static constexpr DsMass vacuous() { return {0.0f, 0.0f}; }
-};
-
-// A cell's masses as stored in a grid: 16-bit fixed point, 4 bytes instead of
-// 8. Steps of 1/65535 lie far below the smallest evidence the model adds, and
-// rounding keeps occupied + free <= 1 so every stored mass stays valid.
-struct PackedMass {
-  std::uint16_t occupied = 0;
-  std::uint16_t free = 0;
-
-  static constexpr float kOne = 65535.0f;
-
-  constexpr bool vacuous() const { return occupied == 0 && free == 0; }
-  constexpr DsMass mass() const {
-    const float o = static_cast<float>(occupied) * (1.0f / kOne);
-    // min: float rounding must not make occupied + free exceed 1.
-    return {o, std::min(static_cast<float>(free) * (1.0f / kOne), 1.0f - o)};
-  }
-  static constexpr PackedMass pack(const DsMass& m) {
-    const auto q = [](float v) -> std::uint32_t {
-      if (!(v > 0.0f)) return 0;  // also NaN
-      return v >= 1.0f ? 65535u : static_cast<std::uint32_t>(v * kOne + 0.5f);
-    };
-    const std::uint32_t o = q(m.occupied);
-    const std::uint32_t f = std::min(q(m.free), 65535u - o);
-    return {static_cast<std::uint16_t>(o), static_cast<std::uint16_t>(f)};
-  }
 };
 
 // Dempster's rule of combination.

@@ -47,7 +47,8 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
       const Eigen::Vector2d sp = to_source(wx, wy);
       const DsMass m = interpolated_masses(source, sp.x(), sp.y());
       if (m.occupied + m.free < kNothing) continue;
-      target.update({x, y}, [&](const DsMass& cell) { return evidence.update(cell, m); });
+      DsMass& cell = target.mutable_at({x, y});
+      cell = evidence.update(cell, m);
     }
   }
 }
@@ -65,11 +66,11 @@ void combine_aligned(MultiResMap& target, const MultiResMap& source) {
   const EvidenceModel& evidence = target.config().evidence;
   for (int level = 0; level < target.levels(); ++level) {
     DsGrid& t = target.mutable_level(level);
-    source.level(level).for_each_tile([&](CellIndex origin, const PackedMass* cells) {
+    source.level(level).for_each_tile([&](CellIndex origin, const DsMass* cells) {
       for (int i = 0; i < DsGrid::kTileCells; ++i) {
-        const DsMass m = cells[i].mass();
-        if (m.occupied + m.free < kNothing) continue;
-        t.update(DsGrid::tile_cell(origin, i), [&](const DsMass& cell) { return evidence.update(cell, m); });
+        if (cells[i].occupied + cells[i].free < kNothing) continue;
+        DsMass& cell = t.mutable_at(DsGrid::tile_cell(origin, i));
+        cell = evidence.update(cell, cells[i]);
       }
     });
   }

@@ -37,7 +37,10 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
       throw ConfigError("MultiResMap::insert_scan: the maps differ in resolution or levels");
   // Applies `update` to cell c of every map's grid at `level`.
   const auto each = [&maps](std::size_t level, CellIndex c, auto&& update) {
-    for (MultiResMap* m : maps) m->grids_[level].update(c, update);
+    for (MultiResMap* m : maps) {
+      DsMass& cell = m->grids_[level].mutable_at(c);
+      cell = update(cell);
+    }
   };
   const Pose2 laser = robot_pose * laser_in_base;
   const Eigen::Vector2d origin = laser.translation();

@@ -22,12 +22,12 @@ TEST(MultiResMap, BeamMarksHitOccupiedAndPathFreeOnEveryLevel) {
     // One hit: exactly the hit mass on level 0; coarse levels spread it over
     // the four nearest cells, so the cell holding the point gets a share.
     if (l == 0) {
-      EXPECT_NEAR(g.at(g.cell_of({2.01, 0.01})).occupied, ev.hit_occupied, 1e-5);
+      EXPECT_NEAR(g.at(g.cell_of({2.01, 0.01})).occupied, ev.hit_occupied, 1e-6);
     } else {
       EXPECT_GT(g.at(g.cell_of({2.01, 0.01})).occupied, 0.1f * ev.hit_occupied) << "level " << l;
     }
     // One pass (free_space_on_coarse_levels): exactly the free mass.
-    EXPECT_NEAR(g.at(g.cell_of({1.0, 0.01})).free, ev.pass_free, 1e-5) << "level " << l;
+    EXPECT_NEAR(g.at(g.cell_of({1.0, 0.01})).free, ev.pass_free, 1e-6) << "level " << l;
     EXPECT_FLOAT_EQ(g.at(g.cell_of({1.0, 1.0})).unknown(), 1.0f);
   }
 }
@@ -38,10 +38,10 @@ TEST(MultiResMap, ScanIsPlacedByRobotPoseAndLaserOffset) {
   map.insert_scan(Pose2(5.0, 5.0, std::numbers::pi / 2), Pose2(0.2, 0.0, 0.0), pts);
   const DsGrid& g = map.finest();
   const EvidenceModel ev;
-  EXPECT_NEAR(g.at(g.cell_of({5.0, 6.0})).occupied, ev.hit_occupied, 1e-5);
+  EXPECT_NEAR(g.at(g.cell_of({5.0, 6.0})).occupied, ev.hit_occupied, 1e-6);
   // The beam starts at the laser (0.2 m ahead of the base): cells behind it stay unknown.
   EXPECT_FLOAT_EQ(g.at(g.cell_of({5.0, 5.1})).unknown(), 1.0f);
-  EXPECT_NEAR(g.at(g.cell_of({5.0, 5.5})).free, ev.pass_free, 1e-5);
+  EXPECT_NEAR(g.at(g.cell_of({5.0, 5.5})).free, ev.pass_free, 1e-6);
 }
 
 // map.free_margin_cells: free evidence stops that many cells short of the hit.
@@ -57,11 +57,11 @@ TEST(MultiResMap, FreeMarginStopsFreeEvidenceShortOfTheHit) {
   const MultiResMap with = map_after_beam(1.0, 2.02f);
   const DsGrid& g = with.finest();
   EXPECT_FLOAT_EQ(g.at(g.cell_of({1.99, 0.012})).unknown(), 1.0f);  // the cell just before the hit's
-  EXPECT_NEAR(g.at(g.cell_of({1.94, 0.012})).free, pass_free, 1e-5);
+  EXPECT_NEAR(g.at(g.cell_of({1.94, 0.012})).free, pass_free, 1e-6);
   EXPECT_GT(g.at(g.cell_of({2.02, 0.012})).occupied, 0.0f);
   EXPECT_FLOAT_EQ(g.at(g.cell_of({2.02, 0.012})).free, 0.0f);
   const MultiResMap without = map_after_beam(0.0, 2.02f);  // no margin
-  EXPECT_NEAR(without.finest().at(g.cell_of({1.99, 0.012})).free, pass_free, 1e-5);
+  EXPECT_NEAR(without.finest().at(g.cell_of({1.99, 0.012})).free, pass_free, 1e-6);
   EXPECT_FLOAT_EQ(without.finest().at(g.cell_of({2.02, 0.012})).free, 0.0f);
   // A hit closer than the margin adds no free evidence at all.
   const MultiResMap close = map_after_beam(10.0, 0.3f);

@@ -99,7 +99,7 @@ TEST(ForeignMaps, AnEncounterTurnedByOneDegreeIsStraightenedByClosuresIntoTheOth
 TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
   MapConfig config;
   MultiResMap map(config);
-  map.mutable_level(0).set({3, 4}, {0.6f, 0.1f});
+  map.mutable_level(0).mutable_at({3, 4}) = {0.6f, 0.1f};
   auto frozen = std::make_shared<const FrozenMap>(map);
   ForeignMaps maps(config);
   EXPECT_EQ(maps.set(1, Pose2(1, 0, 0), {{0, Pose2(), frozen}, {1, Pose2(2, 0, 0), frozen}}).size(), 2u);
