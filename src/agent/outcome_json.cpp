@@ -6,7 +6,7 @@ namespace dsswarm::agent {
 namespace {
 
 using nlohmann::json;
-using End = protocol::EncounterOutcome::End;
+using OutcomeEnd = protocol::EncounterOutcome::End;
 
 json pose(const Pose2& p) { return json::array({p.x, p.y, p.theta}); }
 Pose2 pose(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
@@ -35,8 +35,8 @@ RelativePoseResult located(const json& j) {
   return r;
 }
 
-constexpr std::pair<End, const char*> kEnds[] = {
-    {End::accepted, "accepted"}, {End::rejected, "rejected"}, {End::declined, "declined"}, {End::abandoned, "abandoned"}};
+constexpr std::pair<OutcomeEnd, const char*> kEnds[] = {
+    {OutcomeEnd::accepted, "accepted"}, {OutcomeEnd::rejected, "rejected"}, {OutcomeEnd::declined, "declined"}, {OutcomeEnd::abandoned, "abandoned"}};
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 // these (with the file/line/field named in the message) and never as a crash.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace dsswarm {
 
@@ -18,5 +19,10 @@ class ConfigError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Throws ConfigError("<section>: <message>") unless ok.
+inline void require_config(std::string_view section, bool ok, const std::string& message) {
+  if (!ok) throw ConfigError(std::string(section) + ": " + message);
+}
 
 }  // namespace dsswarm

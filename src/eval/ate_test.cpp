@@ -14,7 +14,7 @@
 namespace dsswarm {
 namespace {
 
-Trajectory make_truth(std::size_t n) {
+Trajectory make_ate_truth(std::size_t n) {
   Trajectory t;
   Pose2 p(1.0, 2.0, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -25,7 +25,7 @@ Trajectory make_truth(std::size_t n) {
 }
 
 TEST(EvaluateAte, RigidlyMovedTrajectoryHasZeroErrorAndRecoversTransform) {
-  const Trajectory truth = make_truth(80);
+  const Trajectory truth = make_ate_truth(80);
   const Pose2 frame(-4.0, 7.5, 2.2);  // estimate frame -> truth frame
   Trajectory estimate = truth;
   for (auto& s : estimate) s.pose = frame.inverse() * s.pose;
@@ -67,7 +67,7 @@ TEST(EvaluateAte, RadialNoiseGivesExpectedRmse) {
 }
 
 TEST(EvaluateAte, AlignmentIsLeastSquaresOptimal) {
-  const Trajectory truth = make_truth(50);
+  const Trajectory truth = make_ate_truth(50);
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, 0.1);
   Trajectory estimate = truth;
@@ -105,7 +105,7 @@ TEST(EvaluateAte, MedianOfEvenCountAveragesMiddlePair) {
 }
 
 TEST(EvaluateAte, UnmatchedPosesAreSkipped) {
-  const Trajectory truth = make_truth(20);
+  const Trajectory truth = make_ate_truth(20);
   Trajectory estimate = truth;
   estimate[3].timestamp += 0.05;   // beyond the default 10 ms
   estimate[7].pose = Pose2(99, 99, 0);
@@ -116,7 +116,7 @@ TEST(EvaluateAte, UnmatchedPosesAreSkipped) {
 }
 
 TEST(EvaluateAte, TooFewMatchesIsAClearInputError) {
-  const Trajectory truth = make_truth(10);
+  const Trajectory truth = make_ate_truth(10);
   Trajectory estimate = truth;
   for (auto& s : estimate) s.timestamp -= 50.0;
   estimate[0].timestamp = truth[0].timestamp;  // a single match is not enough

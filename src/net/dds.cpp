@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "net/qos.hpp"
 
 namespace dsswarm::net {
 namespace {
@@ -13,10 +14,6 @@ namespace {
 // The RTPS port mapping (7400 + 250 * domain + ...) runs out of ports above 232.
 constexpr std::uint32_t kMaxDomainId = 232;
 constexpr auto kPollInterval = std::chrono::milliseconds(5);
-
-dds_duration_t to_duration(std::chrono::milliseconds d) {
-  return DDS_MSECS(static_cast<dds_duration_t>(d.count()));
-}
 
 // ---------------------------------------------------------------- domains
 

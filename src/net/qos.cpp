@@ -4,11 +4,11 @@
 #include <utility>
 
 namespace dsswarm::net {
-namespace {
-
 dds_duration_t to_duration(std::chrono::milliseconds d) {
   return DDS_MSECS(static_cast<dds_duration_t>(d.count()));
 }
+
+namespace {
 
 dds_qos_t* new_qos() {
   dds_qos_t* qos = dds_create_qos();

@@ -11,6 +11,8 @@
 
 namespace dsswarm::net {
 
+dds_duration_t to_duration(std::chrono::milliseconds d);
+
 class Qos {
  public:
   Qos();

@@ -35,7 +35,7 @@ namespace {
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-constexpr auto kTimeout = 10s;
+constexpr auto kReplayTimeout = 10s;
 using test::bits;
 
 // A child process, killed and reaped if the test ends before it does.
@@ -138,7 +138,7 @@ TEST_F(ReplayTest, ALiveSourceGetsTheScansReadLogReads) {
   ASSERT_TRUE(replay.started());
 
   for (const LaserScan& want : expected.scans) {
-    const std::optional<LaserScan> got = input.next(kTimeout);
+    const std::optional<LaserScan> got = input.next(kReplayTimeout);
     ASSERT_TRUE(got.has_value()) << read_text(dir / "replay.out");
     EXPECT_NEAR(got->timestamp, want.timestamp, 1e-6);
     EXPECT_EQ(bits(got->ranges), bits(want.ranges));
@@ -152,7 +152,7 @@ TEST_F(ReplayTest, ALiveSourceGetsTheScansReadLogReads) {
     EXPECT_NEAR(got->laser_offset.x, want.laser_offset.x, 1e-9);
     EXPECT_NEAR(got->laser_offset.theta, want.laser_offset.theta, 1e-9);
   }
-  EXPECT_EQ(replay.wait(kTimeout), 0) << read_text(dir / "replay.out");
+  EXPECT_EQ(replay.wait(kReplayTimeout), 0) << read_text(dir / "replay.out");
   EXPECT_EQ(input.stats().scans_dropped, 0u);
   EXPECT_NE(read_text(dir / "replay.out").find("replayed 40 scans"), std::string::npos);
 }
@@ -164,16 +164,16 @@ TEST_F(ReplayTest, SigintEndsALoopingReplayCleanly) {
   LiveScanSource input(agent, config);
   Child replay(replay_args({"--loop", "--rate", "4", "--wait-for-subscribers", "1"}), dir / "replay.out");
   ASSERT_TRUE(replay.started());
-  for (int i = 0; i < 50; ++i) ASSERT_TRUE(input.next(kTimeout).has_value()) << "scan " << i;  // past one loop
+  for (int i = 0; i < 50; ++i) ASSERT_TRUE(input.next(kReplayTimeout).has_value()) << "scan " << i;  // past one loop
   replay.signal(SIGINT);
-  EXPECT_EQ(replay.wait(kTimeout), 0) << read_text(dir / "replay.out");
+  EXPECT_EQ(replay.wait(kReplayTimeout), 0) << read_text(dir / "replay.out");
   EXPECT_NE(read_text(dir / "replay.out").find("interrupted after"), std::string::npos);
 }
 
 TEST_F(ReplayTest, NoSubscriberInTimeIsAnError) {
   Child replay(replay_args({"--wait-for-subscribers", "1", "--wait-timeout", "0.3"}), dir / "replay.out");
   ASSERT_TRUE(replay.started());
-  EXPECT_EQ(replay.wait(kTimeout), 1);
+  EXPECT_EQ(replay.wait(kReplayTimeout), 1);
   EXPECT_NE(read_text(dir / "replay.out").find("error: replay: fewer than 1 subscriber"), std::string::npos)
       << read_text(dir / "replay.out");
 }
@@ -184,7 +184,7 @@ TEST_F(ReplayTest, BadSettingsAreConfigErrors) {
     // Nothing is published: each setting fails before the first scan.
     Child replay({DSSWARM_CLI, "replay", log.string(), "--interface", "lo", option, value}, dir / "replay.out");
     ASSERT_TRUE(replay.started());
-    EXPECT_EQ(replay.wait(kTimeout), 2) << option;
+    EXPECT_EQ(replay.wait(kReplayTimeout), 2) << option;
     EXPECT_NE(read_text(dir / "replay.out").find("error: "), std::string::npos) << read_text(dir / "replay.out");
   }
 }
@@ -208,7 +208,7 @@ TEST_F(ReplayTest, RealDataLogArrivesWhole) {
   std::size_t same_odometry = 0, backwards = 0;
   double newest = -1e300;
   for (const LaserScan& want : expected.scans) {
-    const std::optional<LaserScan> got = input.next(kTimeout);
+    const std::optional<LaserScan> got = input.next(kReplayTimeout);
     ASSERT_TRUE(got.has_value()) << read_text(dir / "replay.out");
     ASSERT_NEAR(got->timestamp, want.timestamp, 1e-6);
     ASSERT_EQ(bits(got->ranges), bits(want.ranges));
@@ -219,7 +219,7 @@ TEST_F(ReplayTest, RealDataLogArrivesWhole) {
     const Pose2 d = between(*want.odometry, *got->odometry);
     same_odometry += std::hypot(d.x, d.y) < 1e-6 && std::abs(d.theta) < 1e-6 ? 1 : 0;
   }
-  EXPECT_EQ(replay.wait(kTimeout), 0) << read_text(dir / "replay.out");
+  EXPECT_EQ(replay.wait(kReplayTimeout), 0) << read_text(dir / "replay.out");
   // A scan stamped before an earlier one may be interpolated between its neighbours.
   EXPECT_GE(same_odometry + backwards, expected.scans.size());
   std::cout << expected.scans.size() << " scans, " << backwards << " stamped backwards, " << same_odometry

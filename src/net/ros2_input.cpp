@@ -27,17 +27,6 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxFrameChain = 16;  // hops from the laser frame up to the base frame
 constexpr std::size_t kTakeBatch = 64;
 
-struct PendingScan {
-  LaserScan scan;
-  std::string frame;       // header.frame_id without a leading '/'
-  Clock::time_point deadline;  // goes out with what is known by then
-};
-
-struct StaticLink {
-  std::string parent;
-  Pose2 parent_from_child;
-};
-
 std::chrono::milliseconds millis(double seconds) {
   return std::chrono::milliseconds(static_cast<std::int64_t>(std::llround(seconds * 1000.0)));
 }
@@ -60,6 +49,17 @@ std::string frame_of(const char* id) { return std::string(strip_frame_slash(id =
 }  // namespace
 
 struct LiveScanSource::Impl {
+  struct PendingScan {
+    LaserScan scan;
+    std::string frame;           // header.frame_id without a leading '/'
+    Clock::time_point deadline;  // goes out with what is known by then
+  };
+
+  struct StaticLink {
+    std::string parent;
+    Pose2 parent_from_child;
+  };
+
   explicit Impl(const LiveInputConfig& c)
       : config(c),
         scan_warnings("LaserScan samples on " + c.scan_topic, millis(c.warning_interval)),

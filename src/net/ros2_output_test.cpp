@@ -23,7 +23,7 @@ using namespace std::chrono_literals;
 using test::loopback_config;
 using test::test_namespace;
 
-constexpr auto kTimeout = 5s;
+constexpr auto kMapTimeout = 5s;
 
 // A received map, copied out of the loaned sample.
 struct ReceivedMap {
@@ -72,13 +72,13 @@ TEST(MapPublisher, ALateJoinerGetsTheNewestMapOnlyAsNav2Subscribes) {
   Participant viewer(loopback_config());
   MapPublisher maps(agent, map_config());
   maps.publish(small_raster(0.2f), 100.0);
-  ASSERT_TRUE(maps.flush(kTimeout));
+  ASSERT_TRUE(maps.flush(kMapTimeout));
   maps.publish(small_raster(0.9f), 101.0);
-  ASSERT_TRUE(maps.flush(kTimeout));
+  ASSERT_TRUE(maps.flush(kMapTimeout));
 
   Topic<ros::OccupancyGrid> topic(viewer, ros_topic_name(test_namespace(), "map"));
   Reader<ros::OccupancyGrid> nav2(topic, ros_transient_local(1));
-  const std::optional<ReceivedMap> got = take_map(nav2, kTimeout);
+  const std::optional<ReceivedMap> got = take_map(nav2, kMapTimeout);
   ASSERT_TRUE(got.has_value());
   EXPECT_EQ(got->stamp, 101.0);
   EXPECT_EQ(got->frame, "map");
@@ -100,9 +100,9 @@ TEST(MapPublisher, AVolatileViewerGetsMapsPublishedAfterItJoined) {
   MapPublisher maps(agent, map_config());
   Topic<ros::OccupancyGrid> topic(viewer, ros_topic_name(test_namespace(), "map"));
   Reader<ros::OccupancyGrid> rviz(topic, ros_default(5));
-  ASSERT_TRUE(rviz.wait_for_writers(1, kTimeout));
+  ASSERT_TRUE(rviz.wait_for_writers(1, kMapTimeout));
   maps.publish(small_raster(0.9f), 7.0);
-  const std::optional<ReceivedMap> got = take_map(rviz, kTimeout);
+  const std::optional<ReceivedMap> got = take_map(rviz, kMapTimeout);
   ASSERT_TRUE(got.has_value());
   EXPECT_EQ(got->stamp, 7.0);
 }
@@ -127,7 +127,7 @@ TEST(MapPublisher, CellsReadAsMapServerReadsOurSavedMap) {
   std::filesystem::remove_all(dir);
 
   maps.publish(raster, 1.0);
-  const std::optional<ReceivedMap> got = take_map(reader, kTimeout);
+  const std::optional<ReceivedMap> got = take_map(reader, kMapTimeout);
   ASSERT_TRUE(got.has_value());
   EXPECT_EQ(got->data, saved.occupancy);
 }
@@ -147,7 +147,7 @@ TEST(MapPublisher, PublishesAtMostOncePerPeriod) {
   EXPECT_FALSE(maps.publish_if_due(t0 + 500ms, 1.5, build));
   EXPECT_TRUE(maps.publish_if_due(t0 + 1000ms, 2.0, build));
   EXPECT_EQ(built, 2);
-  EXPECT_TRUE(maps.flush(kTimeout));
+  EXPECT_TRUE(maps.flush(kMapTimeout));
   const MapPublisherStats stats = maps.stats();
   EXPECT_EQ(stats.published + stats.superseded, 2u);
 }
@@ -194,7 +194,7 @@ struct Transform {
 
 std::optional<Transform> take_transform(const Reader<ros::TFMessage>& reader) {
   std::optional<Transform> got;
-  const auto deadline = std::chrono::steady_clock::now() + kTimeout;
+  const auto deadline = std::chrono::steady_clock::now() + kMapTimeout;
   while (!got && std::chrono::steady_clock::now() < deadline) {
     reader.wait(10ms);
     reader.take(1, [&](const ros::TFMessage& m, const dds_sample_info_t&) {
@@ -211,8 +211,8 @@ TEST(PoseOutput, MapToOdomComposesWithOdometryToTheMapPose) {
   Participant viewer_participant(loopback_config());
   PoseViewer viewer(viewer_participant);
   PoseOutput output(agent, pose_config());
-  ASSERT_TRUE(viewer.tf.wait_for_writers(1, kTimeout));
-  ASSERT_TRUE(viewer.pose.wait_for_writers(1, kTimeout));
+  ASSERT_TRUE(viewer.tf.wait_for_writers(1, kMapTimeout));
+  ASSERT_TRUE(viewer.pose.wait_for_writers(1, kMapTimeout));
   const Pose2 map_pose(4.0, -2.0, 2.5), odom_pose(1.0, 3.0, -0.7);
   EXPECT_TRUE(output.publish(10.0, map_pose, odom_pose));
 
@@ -227,7 +227,7 @@ TEST(PoseOutput, MapToOdomComposesWithOdometryToTheMapPose) {
 
   std::optional<Pose2> pose;
   std::string frame;
-  ASSERT_TRUE(viewer.pose.wait(kTimeout));
+  ASSERT_TRUE(viewer.pose.wait(kMapTimeout));
   viewer.pose.take(1, [&](const ros::PoseStamped& m, const dds_sample_info_t&) {
     pose = to_pose2(m.pose);
     frame = m.header.frame_id;
@@ -242,7 +242,7 @@ TEST(PoseOutput, WithoutOdometryTheMapPoseGoesToTheBaseFrame) {
   Participant agent(loopback_config());
   PoseViewer viewer(agent);
   PoseOutput output(agent, pose_config());
-  ASSERT_TRUE(viewer.tf.wait_for_writers(1, kTimeout));
+  ASSERT_TRUE(viewer.tf.wait_for_writers(1, kMapTimeout));
   output.publish(10.0, Pose2(1.0, 2.0, 0.5), std::nullopt);
   const std::optional<Transform> t = take_transform(viewer.tf);
   ASSERT_TRUE(t.has_value());
@@ -257,7 +257,7 @@ TEST(PoseOutput, ThePathStaysBoundedAndWhole) {
   config.path_max_poses = 8;
   config.path_period = 0.0;
   PoseOutput output(agent, config);
-  ASSERT_TRUE(viewer.path.wait_for_writers(1, kTimeout));
+  ASSERT_TRUE(viewer.path.wait_for_writers(1, kMapTimeout));
   output.publish(0.0, Pose2(0.0, 0.0, 0.0), std::nullopt);
   output.publish(0.1, Pose2(0.01, 0.0, 0.0), std::nullopt);  // too close: not added
   EXPECT_EQ(output.path_size(), 1u);
@@ -266,7 +266,7 @@ TEST(PoseOutput, ThePathStaysBoundedAndWhole) {
   EXPECT_GE(output.path_size(), 4u);
 
   std::vector<double> xs;
-  const auto deadline = std::chrono::steady_clock::now() + kTimeout;
+  const auto deadline = std::chrono::steady_clock::now() + kMapTimeout;
   while (std::chrono::steady_clock::now() < deadline && (xs.empty() || xs.back() != 19.5)) {
     viewer.path.wait(10ms);
     viewer.path.take(1, [&](const ros::Path& m, const dds_sample_info_t&) {

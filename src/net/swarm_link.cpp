@@ -14,8 +14,6 @@ Qos heartbeat_qos() {
   return q;
 }
 
-dds_duration_t to_duration(std::chrono::milliseconds ms) { return DDS_MSECS(ms.count()); }
-
 }  // namespace
 
 std::string swarm_partition(const std::string& swarm_id) {

@@ -12,31 +12,6 @@ namespace dsswarm {
 
 namespace {
 
-// A SwarmAgent as the protocol sees it. Nothing else touches the agent while
-// an encounter runs, so its live map can be lent out without a copy.
-class InProcessPort : public protocol::AgentPort {
- public:
-  InProcessPort(SwarmAgent& agent, const RelativePoseConfig& locate) : agent_(agent), locate_(locate) {}
-
-  std::optional<protocol::CapturedView> capture_view(const std::string&, std::uint64_t) override {
-    if (!agent_.last_scan()) return std::nullopt;
-    return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr};
-  }
-  MapSnapshot snapshot() override { return agent_.snapshot(); }
-  std::vector<LayerVersion> inventory() const override { return agent_.inventory(); }
-  std::optional<Pose2> known_frame(const std::string& origin) const override {
-    const MapLayer* l = agent_.knowledge().find(origin);
-    return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
-  }
-  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
-    agent_.merge(snapshot, sender_in_self);
-  }
-
- private:
-  SwarmAgent& agent_;
-  const RelativePoseConfig& locate_;
-};
-
 // Why an event did not become an encounter, in words that group alike events.
 std::string skip_reason(const protocol::EncounterOutcome& x, const protocol::EncounterOutcome& y,
                         const SwarmConfig& config) {
@@ -53,9 +28,34 @@ std::string skip_reason(const protocol::EncounterOutcome& x, const protocol::Enc
 }  // namespace
 
 struct SwarmSession::Robot {
+  // A SwarmAgent as the protocol sees it. Nothing else touches the agent while
+  // an encounter runs, so its live map can be lent out without a copy.
+  class Port : public protocol::AgentPort {
+   public:
+    Port(SwarmAgent& agent, const RelativePoseConfig& locate) : agent_(agent), locate_(locate) {}
+
+    std::optional<protocol::CapturedView> capture_view(const std::string&, std::uint64_t) override {
+      if (!agent_.last_scan()) return std::nullopt;
+      return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr};
+    }
+    MapSnapshot snapshot() override { return agent_.snapshot(); }
+    std::vector<LayerVersion> inventory() const override { return agent_.inventory(); }
+    std::optional<Pose2> known_frame(const std::string& origin) const override {
+      const MapLayer* l = agent_.knowledge().find(origin);
+      return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
+    }
+    void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
+      agent_.merge(snapshot, sender_in_self);
+    }
+
+   private:
+    SwarmAgent& agent_;
+    const RelativePoseConfig& locate_;
+  };
+
   Robot(SwarmAgent& agent, const SwarmConfig& config)
       : port(agent, config.encounter.locate), engine(agent.name(), config, port), gate(agent.name()) {}
-  InProcessPort port;
+  Port port;
   protocol::EncounterEngine engine;
   protocol::MessageGate gate;
 };

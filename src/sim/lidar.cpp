@@ -8,22 +8,18 @@
 namespace dsswarm {
 namespace {
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw ConfigError("lidar config: " + message);
-}
-
 bool is_full_circle(double fov) { return fov >= 2.0 * std::numbers::pi - 1e-9; }
 
 }  // namespace
 
 void validate(const LidarConfig& c) {
-  require(c.beams >= 2 && c.beams <= 100000, "beams must be in [2, 100000]");
-  require(std::isfinite(c.fov) && c.fov > 0 && c.fov <= 2.0 * std::numbers::pi + 1e-9, "fov must be in (0, 2 pi] rad");
-  require(std::isfinite(c.range_min) && c.range_min >= 0, "range_min must be >= 0");
-  require(std::isfinite(c.range_max) && c.range_max > c.range_min, "range_max must be finite and > range_min");
-  require(std::isfinite(c.noise_std) && c.noise_std >= 0, "noise_std must be >= 0");
-  require(std::isfinite(c.rate_hz) && c.rate_hz > 0 && c.rate_hz <= 1000, "rate_hz must be in (0, 1000]");
-  require(c.max_range_dropout >= 0 && c.max_range_dropout <= 1, "max_range_dropout must be in [0, 1]");
+  require_config("lidar config", c.beams >= 2 && c.beams <= 100000, "beams must be in [2, 100000]");
+  require_config("lidar config", std::isfinite(c.fov) && c.fov > 0 && c.fov <= 2.0 * std::numbers::pi + 1e-9, "fov must be in (0, 2 pi] rad");
+  require_config("lidar config", std::isfinite(c.range_min) && c.range_min >= 0, "range_min must be >= 0");
+  require_config("lidar config", std::isfinite(c.range_max) && c.range_max > c.range_min, "range_max must be finite and > range_min");
+  require_config("lidar config", std::isfinite(c.noise_std) && c.noise_std >= 0, "noise_std must be >= 0");
+  require_config("lidar config", std::isfinite(c.rate_hz) && c.rate_hz > 0 && c.rate_hz <= 1000, "rate_hz must be in (0, 1000]");
+  require_config("lidar config", c.max_range_dropout >= 0 && c.max_range_dropout <= 1, "max_range_dropout must be in [0, 1]");
 }
 
 LaserScan simulate_scan(const World& world, const Pose2& laser_pose, const LidarConfig& config, Rng& rng) {

@@ -10,7 +10,7 @@
 namespace dsswarm {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kHalfTurn = std::numbers::pi;
 
 World wall_at_x5() { return World({Segment{{5, -100}, {5, 100}}}); }
 
@@ -24,16 +24,16 @@ TEST(Lidar, BeamGeometryFollowsConfig) {
   Rng rng(1);
   const LaserScan scan = simulate_scan(wall_at_x5(), Pose2(), noiseless(), rng);
   ASSERT_EQ(scan.ranges.size(), 361u);
-  EXPECT_NEAR(scan.angle_min, -kPi / 2, 1e-12);
-  EXPECT_NEAR(scan.beam_angle(360), kPi / 2, 1e-12);
+  EXPECT_NEAR(scan.angle_min, -kHalfTurn / 2, 1e-12);
+  EXPECT_NEAR(scan.beam_angle(360), kHalfTurn / 2, 1e-12);
   EXPECT_EQ(scan.range_max, 30.0);
   EXPECT_EQ(scan.range_min, 0.05);
 
   LidarConfig full = noiseless();
-  full.fov = 2 * kPi;
+  full.fov = 2 * kHalfTurn;
   full.beams = 360;
   const LaserScan ring = simulate_scan(wall_at_x5(), Pose2(), full, rng);
-  EXPECT_NEAR(ring.angle_increment, kPi / 180, 1e-12);  // no duplicate beam at +-pi
+  EXPECT_NEAR(ring.angle_increment, kHalfTurn / 180, 1e-12);  // no duplicate beam at +-pi
 }
 
 TEST(Lidar, NoiselessRangesAreExact) {
@@ -54,7 +54,7 @@ TEST(Lidar, NoiselessRangesAreExact) {
 TEST(Lidar, LaserPoseIsApplied) {
   Rng rng(1);
   // Laser at (8, 1) looking back at the wall (-x): the centre beam reads 3 m.
-  const LaserScan scan = simulate_scan(wall_at_x5(), Pose2(8, 1, kPi), noiseless(), rng);
+  const LaserScan scan = simulate_scan(wall_at_x5(), Pose2(8, 1, kHalfTurn), noiseless(), rng);
   EXPECT_NEAR(scan.ranges[180], 3.0, 1e-6);
   // Beam 0 (angle -pi/2 in the laser frame) points to world +y: no hit.
   EXPECT_EQ(scan.ranges[0], 30.0f);

@@ -15,10 +15,6 @@ constexpr double kLineOfSightClearance = 0.05;
 // Timestamps are k / rate; an interval of 15 s must not miss by a rounding error.
 constexpr double kTimeTolerance = 1e-9;
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw ConfigError("proximity config: " + message);
-}
-
 std::string robot_name(const SimulatedSwarm& swarm, std::size_t r) {
   return r < swarm.names.size() ? swarm.names[r] : "robot index " + std::to_string(r);
 }
@@ -48,8 +44,8 @@ void check_one_clock(const SimulatedSwarm& swarm) {
 }  // namespace
 
 void validate(const ProximityConfig& c) {
-  require(std::isfinite(c.range) && c.range > 0, "range must be a positive number of metres");
-  require(!std::isnan(c.repeat_interval) && c.repeat_interval > 0,
+  require_config("proximity config", std::isfinite(c.range) && c.range > 0, "range must be a positive number of metres");
+  require_config("proximity config", !std::isnan(c.repeat_interval) && c.repeat_interval > 0,
           "repeat_interval must be a positive number of seconds (or infinity)");
 }
 

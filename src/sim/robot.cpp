@@ -15,10 +15,6 @@ constexpr double kStartTurnInPlace = 0.35;  // rad
 constexpr double kStopTurnInPlace = 0.02;   // rad
 constexpr double kArrived = 0.03;           // m
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw ConfigError("robot config: " + message);
-}
-
 // Exact motion along the arc of constant speed v and turn rate w for dt.
 Pose2 integrate_arc(const Pose2& pose, double v, double w, double dt) {
   const double dtheta = w * dt;
@@ -30,22 +26,22 @@ Pose2 integrate_arc(const Pose2& pose, double v, double w, double dt) {
 }  // namespace
 
 void validate(const RobotConfig& c) {
-  require(std::isfinite(c.max_speed) && c.max_speed > 0 && c.max_speed <= 20, "max_speed must be in (0, 20] m/s");
-  require(std::isfinite(c.max_turn_rate) && c.max_turn_rate > 0 && c.max_turn_rate <= 20,
+  require_config("robot config", std::isfinite(c.max_speed) && c.max_speed > 0 && c.max_speed <= 20, "max_speed must be in (0, 20] m/s");
+  require_config("robot config", std::isfinite(c.max_turn_rate) && c.max_turn_rate > 0 && c.max_turn_rate <= 20,
           "max_turn_rate must be in (0, 20] rad/s");
-  require(std::isfinite(c.odom_trans_noise) && c.odom_trans_noise >= 0 && c.odom_trans_noise <= 1,
+  require_config("robot config", std::isfinite(c.odom_trans_noise) && c.odom_trans_noise >= 0 && c.odom_trans_noise <= 1,
           "odom_trans_noise must be in [0, 1]");
-  require(std::isfinite(c.odom_rot_noise) && c.odom_rot_noise >= 0 && c.odom_rot_noise <= 1,
+  require_config("robot config", std::isfinite(c.odom_rot_noise) && c.odom_rot_noise >= 0 && c.odom_rot_noise <= 1,
           "odom_rot_noise must be in [0, 1]");
-  require(std::isfinite(c.odom_drift) && std::abs(c.odom_drift) <= 1, "odom_drift must be in [-1, 1] rad/m");
-  require(std::isfinite(c.laser_offset.x) && std::isfinite(c.laser_offset.y) && std::isfinite(c.laser_offset.theta),
+  require_config("robot config", std::isfinite(c.odom_drift) && std::abs(c.odom_drift) <= 1, "odom_drift must be in [-1, 1] rad/m");
+  require_config("robot config", std::isfinite(c.laser_offset.x) && std::isfinite(c.laser_offset.y) && std::isfinite(c.laser_offset.theta),
           "laser_offset must be finite");
 }
 
 DrivenPath drive_waypoints(const std::vector<Eigen::Vector2d>& waypoints, const Pose2& start,
                            const RobotConfig& config, double dt) {
   validate(config);
-  require(std::isfinite(dt) && dt > 0, "control step must be a positive number of seconds");
+  require_config("robot config", std::isfinite(dt) && dt > 0, "control step must be a positive number of seconds");
   // Step budget (against endless circling): three times the straight-line
   // driving time plus a full turn per waypoint.
   double length = 0.0;
@@ -115,7 +111,7 @@ SimulatedRun simulate_run(const World& world, const std::vector<Eigen::Vector2d>
                           const RobotConfig& robot, const LidarConfig& lidar, std::uint64_t seed, double start_time) {
   validate(robot);
   validate(lidar);
-  require(std::isfinite(start_time), "start_time must be finite");
+  require_config("robot config", std::isfinite(start_time), "start_time must be finite");
   const DrivenPath path = drive_waypoints(waypoints, start, robot, 1.0 / lidar.rate_hz);
   Rng odometry_rng(stream_seed(seed, 1));
   Rng lidar_rng(stream_seed(seed, 2));

@@ -23,10 +23,6 @@ constexpr double kCorridorStartSpacing = 6.0;  // m of corridor per candidate st
 constexpr double kCorridorEndMargin = 1.0;     // m: corridor start spots keep off the corridor ends
 constexpr double kStartClearance = 0.45;
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw ConfigError("swarm config: " + message);
-}
-
 std::size_t random_index(Rng& rng, std::size_t n) {
   return std::min(n - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)));
 }
@@ -100,7 +96,7 @@ std::vector<Eigen::Vector2d> parking_spots(const World& world, const Eigen::Vect
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return a.i * a.i + a.j * a.j < b.i * b.i + b.j * b.j;
   });
-  require(static_cast<int>(candidates.size()) >= robots,
+  require_config("swarm config", static_cast<int>(candidates.size()) >= robots,
           "robots: only " + std::to_string(candidates.size()) + " parking spots fit around the rendezvous for " +
               std::to_string(robots) + " robots; use a larger building (swarm_world_config)");
   std::vector<Eigen::Vector2d> spots;
@@ -143,7 +139,7 @@ std::vector<StartSpot> pick_starts(const World& world, const CorridorNetwork& ne
     if (!far_from(candidate.position, starts, [](const StartSpot& s) { return s.position; })) continue;
     starts.push_back(candidate);
   }
-  require(static_cast<int>(starts.size()) == robots,
+  require_config("swarm config", static_cast<int>(starts.size()) == robots,
           "robots: the building has room for only " + std::to_string(starts.size()) +
               " start spots 3 m apart (and away from the rendezvous), not " + std::to_string(robots) +
               "; use a larger building (swarm_world_config)");
@@ -323,14 +319,14 @@ std::vector<Eigen::Vector2d> plan_route(const World& world, const CorridorNetwor
 }  // namespace
 
 void validate(const SwarmSimConfig& c) {
-  require(c.robots >= 1 && c.robots <= kMaxRobots, "robots must be in [1, " + std::to_string(kMaxRobots) + "]");
+  require_config("swarm config", c.robots >= 1 && c.robots <= kMaxRobots, "robots must be in [1, " + std::to_string(kMaxRobots) + "]");
   validate(c.world);
   validate(c.lidar);
   validate(c.robot);
 }
 
 WorldConfig swarm_world_config(int robots) {
-  require(robots >= 1 && robots <= kMaxRobots, "robots must be in [1, " + std::to_string(kMaxRobots) + "]");
+  require_config("swarm config", robots >= 1 && robots <= kMaxRobots, "robots must be in [1, " + std::to_string(kMaxRobots) + "]");
   WorldConfig config;
   constexpr double kRoomWidth = 7.5, kRoomDepth = 9.0;  // as in the default building
   if (robots <= 3) {
@@ -358,7 +354,7 @@ SimulatedSwarm simulate_swarm(const SwarmSimConfig& config) {
   SimulatedSwarm swarm{generate_world(config.world), {}, {}, {}, {}, {}};
   const World& world = swarm.world;
   const CorridorNetwork network(world.layout().corridors);
-  require(!world.layout().corridors.empty(), "world: the building has no corridors");
+  require_config("swarm config", !world.layout().corridors.empty(), "world: the building has no corridors");
   const auto robots = static_cast<std::size_t>(config.robots);
   Rng plan_rng(stream_seed(config.seed, 0));
 

@@ -39,10 +39,6 @@ Layout layout_of(const WorldConfig& c) {
   return l;
 }
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw ConfigError("world config: " + message);
-}
-
 // Clutter inside one room: boxes and pillars, clear of the door lane, the walls and each other.
 void place_clutter(const WorldConfig& config, const Room& room, const Box& lane, Rng& rng, std::vector<Box>& solids) {
   constexpr int kAttempts = 50;
@@ -74,21 +70,21 @@ void place_clutter(const WorldConfig& config, const Room& room, const Box& lane,
 }  // namespace
 
 void validate(const WorldConfig& c) {
-  require(std::isfinite(c.width) && c.width > 0, "width must be a positive number of metres");
-  require(std::isfinite(c.height) && c.height > 0, "height must be a positive number of metres");
-  require(c.rooms_x >= 1 && c.rooms_x <= 1000, "rooms_x must be in [1, 1000]");
-  require(c.rooms_y >= 1 && c.rooms_y <= 1000, "rooms_y must be in [1, 1000]");
-  require(std::isfinite(c.wall_thickness) && c.wall_thickness > 0 && c.wall_thickness <= 0.5,
+  require_config("world config", std::isfinite(c.width) && c.width > 0, "width must be a positive number of metres");
+  require_config("world config", std::isfinite(c.height) && c.height > 0, "height must be a positive number of metres");
+  require_config("world config", c.rooms_x >= 1 && c.rooms_x <= 1000, "rooms_x must be in [1, 1000]");
+  require_config("world config", c.rooms_y >= 1 && c.rooms_y <= 1000, "rooms_y must be in [1, 1000]");
+  require_config("world config", std::isfinite(c.wall_thickness) && c.wall_thickness > 0 && c.wall_thickness <= 0.5,
           "wall_thickness must be in (0, 0.5] m");
   // A robot keeps 0.4 m from every wall, plus a margin for steering.
-  require(std::isfinite(c.door_width) && c.door_width >= 0.9, "door_width must be >= 0.9 m");
-  require(std::isfinite(c.corridor_width) && c.corridor_width >= 1.0 + c.wall_thickness,
+  require_config("world config", std::isfinite(c.door_width) && c.door_width >= 0.9, "door_width must be >= 0.9 m");
+  require_config("world config", std::isfinite(c.corridor_width) && c.corridor_width >= 1.0 + c.wall_thickness,
           "corridor_width must be >= 1.0 m plus the wall thickness");
-  require(c.clutter_per_room >= 0 && c.clutter_per_room <= 50, "clutter_per_room must be in [0, 50]");
+  require_config("world config", c.clutter_per_room >= 0 && c.clutter_per_room <= 50, "clutter_per_room must be in [0, 50]");
   const Layout l = layout_of(c);
-  require(l.room_width >= kMinRoomSize && l.room_width >= c.door_width + c.wall_thickness + 2 * kDoorCornerMargin,
+  require_config("world config", l.room_width >= kMinRoomSize && l.room_width >= c.door_width + c.wall_thickness + 2 * kDoorCornerMargin,
           "width too small for rooms_x rooms of at least 3 m");
-  require(l.room_depth >= kMinRoomSize, "height too small for rooms_y rows of rooms (and corridors) at least 3 m deep");
+  require_config("world config", l.room_depth >= kMinRoomSize, "height too small for rooms_y rows of rooms (and corridors) at least 3 m deep");
 }
 
 World generate_world(const WorldConfig& config) {

@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kPeers = 4;
-constexpr double kResumeTimeoutS = 120.0;  // beyond Cyclone's 100 s authentication timeout
+constexpr double kLossResumeTimeoutS = 120.0;  // beyond Cyclone's 100 s authentication timeout
 
 std::string peer_name(int i) { return fmt::format("p{}", i); }
 
@@ -63,7 +63,7 @@ bool all_hear(std::vector<PeerProcess*>& peers, const std::vector<std::size_t>& 
   PeerProcess& victim = *peers.back();
   const std::string victim_line = "first " + peer_name(kPeers - 1) + " ";
   for (std::size_t i = 0; i + 1 < peers.size(); ++i) {
-    const double left = kResumeTimeoutS - std::chrono::duration<double>(Clock::now() - t0).count();
+    const double left = kLossResumeTimeoutS - std::chrono::duration<double>(Clock::now() - t0).count();
     if (!peers[i]->wait_for(victim_line, left, heard_before[i] + 1)) return false;
     if (!victim.wait_for("first " + peer_name(static_cast<int>(i)) + " ", left)) return false;
   }
