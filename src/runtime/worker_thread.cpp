@@ -14,7 +14,8 @@ double thread_cpu_seconds() {
 }
 }  // namespace
 
-WorkerThread::WorkerThread() : thread_([this] { run(); }) {}
+WorkerThread::WorkerThread(std::chrono::milliseconds trim_interval)
+    : trim_interval_(trim_interval), thread_([this] { run(); }) {}
 
 WorkerThread::~WorkerThread() {
   {
@@ -63,6 +64,7 @@ double WorkerThread::waited_seconds() const {
 }
 
 void WorkerThread::run() {
+  auto next_trim = std::chrono::steady_clock::now() + trim_interval_;
   std::unique_lock lock(mutex_);
   for (;;) {
     work_or_stop_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
@@ -74,9 +76,11 @@ void WorkerThread::run() {
     job();
 #ifdef __GLIBC__
     // A job's scratch memory (thawed submaps, bounds, the solver's matrices)
-    // is freed in scattered pieces that glibc keeps resident; hand it back so
-    // a long run does not grow by what its largest rounds once needed.
-    malloc_trim(0);
+    // is freed in scattered pieces that glibc keeps resident for the next job.
+    if (std::chrono::steady_clock::now() >= next_trim) {
+      malloc_trim(0);
+      next_trim = std::chrono::steady_clock::now() + trim_interval_;
+    }
 #endif
     const double spent = thread_cpu_seconds() - t0;
     lock.lock();

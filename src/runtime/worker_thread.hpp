@@ -2,6 +2,7 @@
 // An Executor (slam/executor.hpp) with a thread of its own: jobs run one
 // after the other, in the order submitted, while the submitting thread goes
 // on. The thread plumbing the core leaves out lives here.
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -14,7 +15,12 @@ namespace dsswarm {
 
 class WorkerThread final : public Executor {
  public:
-  WorkerThread();
+  // After a job, at most once every `trim_interval`, memory the allocator
+  // holds free is handed back to the system (glibc): a long run then does not
+  // keep what its largest rounds once needed. Not after every job: a trim
+  // unmaps pages the next job faults in again, and its TLB flush interrupts
+  // the other cores, the scan path's among them (docs/performance.md).
+  explicit WorkerThread(std::chrono::milliseconds trim_interval = std::chrono::seconds(10));
   // Finishes the jobs already submitted, then stops the thread.
   ~WorkerThread() override;
   WorkerThread(const WorkerThread&) = delete;
@@ -42,6 +48,7 @@ class WorkerThread final : public Executor {
   bool stop_ = false;
   double cpu_seconds_ = 0.0;
   double waited_seconds_ = 0.0;
+  std::chrono::milliseconds trim_interval_;
   std::thread thread_;  // last: starts once everything above exists
 };
 
