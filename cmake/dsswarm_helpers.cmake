@@ -19,13 +19,16 @@ function(dsswarm_holds_system_tests out)
   set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
-# dsswarm_test(NAME SOURCES a_test.cpp ... LIBS lib ...)
+# dsswarm_test(NAME SOURCES a_test.cpp ... LIBS lib ... [COST n])
 # A GoogleTest executable registered with ctest; each TEST becomes one ctest case.
+# COST (ctest's property, for every case): executables holding cases that run
+# for tens of seconds under the sanitizers give one, so that `ctest -j` starts
+# them first instead of ending the run with one of them alone.
 function(dsswarm_test name)
   if(NOT DSSWARM_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(T "" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(T "" "COST" "SOURCES;LIBS" ${ARGN})
   dsswarm_holds_system_tests(wanted ${T_SOURCES})
   if(NOT wanted)
     return()
@@ -37,5 +40,9 @@ function(dsswarm_test name)
     DSSWARM_TEST_TMP="${CMAKE_BINARY_DIR}/test_tmp"
     DSSWARM_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+  set(properties TIMEOUT 600)
+  if(T_COST)
+    list(APPEND properties COST ${T_COST})
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
 endfunction()
