@@ -201,6 +201,7 @@ TEST_F(ReplayTest, RealDataLogArrivesWhole) {
   LiveInputConfig config;
   config.ns = test::test_namespace();
   config.queue_capacity = expected.scans.size();  // a loaded machine may not keep up with 200x: keep every scan
+  config.wait_for_odometry = 5.0;  // nor deliver a scan's odometry within the default 0.25 s: wait for it
   LiveScanSource input(agent, config);
   log = real;
   Child replay(replay_args({"--rate", rate ? rate : "200", "--wait-for-subscribers", "1"}), dir / "replay.out");
