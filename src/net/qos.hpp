@@ -11,6 +11,7 @@
 
 namespace dsswarm::net {
 
+// A duration as DDS counts it (nanoseconds).
 dds_duration_t to_duration(std::chrono::milliseconds d);
 
 class Qos {
