@@ -12,19 +12,13 @@
 
 #include "agent/checkpoint.hpp"
 #include "agent/paced_feed.hpp"
+#include "agent/paced_feed_test_util.hpp"
 #include "protocol/memory_link.hpp"
 #include "protocol/swarm_session.hpp"
 #include "swarm/test_scenes.hpp"
 
 namespace dsswarm::agent {
 namespace {
-
-PacedFeedConfig feed_config(double rate, std::size_t queue) {
-  PacedFeedConfig c;
-  c.rate = rate;
-  c.queue_capacity = queue;
-  return c;
-}
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -82,7 +76,7 @@ struct LiveSwarm {
     }
   }
   PacedFeed* feed_of(const AgentStream& s, double rate) {
-    feeds.push_back(std::make_unique<PacedFeed>(s.scans, s.clock, feed_config(rate, 64)));
+    feeds.push_back(std::make_unique<PacedFeed>(s.scans, s.clock, paced(rate, 64)));
     return feeds.back().get();
   }
   void run() {
@@ -138,7 +132,7 @@ TEST(AgentRuntime, GarbageAndReplayedMessagesAreCountedAndChangeNothing) {
   const fs::path out = fresh_dir("garbage");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  PacedFeed feed(s.scans, s.clock, feed_config(3.0, 64));
+  PacedFeed feed(s.scans, s.clock, paced(3.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.5;
@@ -174,7 +168,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   for (std::size_t i = 0; i < second.scans.size(); ++i) second.clock.push_back(0.1 * static_cast<double>(i));
   std::size_t version_before = 0;
   {
-    PacedFeed feed(first.scans, first.clock, feed_config(5.0, 64));
+    PacedFeed feed(first.scans, first.clock, paced(5.0, 64));
     auto link = bus->join("a");
     AgentOptions o = options_for("a", out);
     o.linger = 0.0;
@@ -184,7 +178,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
     version_before = read_checkpoint(out, "a").snapshot.layers.at(0).version;
   }
   ASSERT_GT(version_before, 0u);
-  PacedFeed feed(second.scans, second.clock, feed_config(5.0, 64));
+  PacedFeed feed(second.scans, second.clock, paced(5.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.0;
@@ -210,7 +204,7 @@ TEST(AgentRuntime, AnEncounterWithAPeerThatCannotBeReachedEndsAtOnce) {
   const fs::path out = fresh_dir("unreachable");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  PacedFeed feed(s.scans, s.clock, feed_config(3.0, 64));
+  PacedFeed feed(s.scans, s.clock, paced(3.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.5;
@@ -237,7 +231,7 @@ TEST(AgentRuntime, ResumedOnTheWholeRunAgainMapsOnlyWhatTheCheckpointLacks) {
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
   {
-    PacedFeed feed({s.scans.begin(), s.scans.begin() + 15}, {s.clock.begin(), s.clock.begin() + 15}, feed_config(5.0, 64));
+    PacedFeed feed({s.scans.begin(), s.scans.begin() + 15}, {s.clock.begin(), s.clock.begin() + 15}, paced(5.0, 64));
     auto link = bus->join("a");
     AgentOptions o = options_for("a", out);
     o.linger = 0.0;
@@ -245,7 +239,7 @@ TEST(AgentRuntime, ResumedOnTheWholeRunAgainMapsOnlyWhatTheCheckpointLacks) {
     std::atomic<bool> stop{false};
     runtime.run(stop);
   }
-  PacedFeed feed(s.scans, s.clock, feed_config(5.0, 64));
+  PacedFeed feed(s.scans, s.clock, paced(5.0, 64));
   auto link = bus->join("a");
   AgentOptions o = options_for("a", out);
   o.linger = 0.0;
@@ -269,7 +263,7 @@ TEST(AgentRuntime, AFreshStartKeepsTheEarlierCheckpointAside) {
   const AgentStream s = two_robots()[0];
   auto run_once = [&](std::size_t scans) {
     PacedFeed feed({s.scans.begin(), s.scans.begin() + static_cast<long>(scans)},
-                   {s.clock.begin(), s.clock.begin() + static_cast<long>(scans)}, feed_config(5.0, 64));
+                   {s.clock.begin(), s.clock.begin() + static_cast<long>(scans)}, paced(5.0, 64));
     auto link = bus->join("a");
     AgentOptions o = options_for("a", out);
     o.linger = 0.0;
@@ -359,7 +353,7 @@ TEST(AgentRuntime, AStampedEventIsArmedWhileTheSwarmThreadIsBusy) {
   const fs::path out = fresh_dir("busy");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  PacedFeed feed(s.scans, s.clock, feed_config(1.0, 64));  // 3 s
+  PacedFeed feed(s.scans, s.clock, paced(1.0, 64));  // 3 s
   SlowLink link(bus->join("a"), "b");
   AgentOptions o = options_for("a", out);
   o.linger = 0.0;

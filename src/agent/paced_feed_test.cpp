@@ -1,4 +1,5 @@
 #include "agent/paced_feed.hpp"
+#include "agent/paced_feed_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,13 +7,6 @@
 
 namespace dsswarm::agent {
 namespace {
-
-PacedFeedConfig paced(double rate, std::size_t queue) {
-  PacedFeedConfig c;
-  c.rate = rate;
-  c.queue_capacity = queue;
-  return c;
-}
 
 using namespace std::chrono_literals;
 
