@@ -1,9 +1,31 @@
 #include "agent/shared_agent.hpp"
 
+#include <algorithm>
+
+#include "swarm/map_merge.hpp"
+
 namespace dsswarm::agent {
+namespace {
+
+std::vector<LayerVersion> versions_of(const std::vector<MapLayer>& layers) {
+  std::vector<LayerVersion> out;
+  for (const MapLayer& l : layers) out.push_back({l.origin, l.version, l.hops});
+  return out;
+}
+
+bool same_layers(const std::vector<LayerVersion>& x, const std::vector<LayerVersion>& y) {
+  return std::equal(x.begin(), x.end(), y.begin(), y.end(), [](const LayerVersion& a, const LayerVersion& b) {
+    return a.origin == b.origin && a.version == b.version && a.hops == b.hops;
+  });
+}
+
+}  // namespace
 
 SharedAgent::SharedAgent(std::unique_ptr<SwarmAgent> agent, const RelativePoseConfig& locate)
-    : agent_(std::move(agent)), locate_(locate), composer_([this] { compose_loop(); }) {}
+    : agent_(std::move(agent)),
+      locate_(locate),
+      installed_(versions_of(agent_->knowledge().layers())),  // a resumed agent starts composed
+      composer_([this] { compose_loop(); }) {}
 
 SharedAgent::~SharedAgent() {
   {
@@ -43,13 +65,35 @@ Trajectory SharedAgent::optimized_trajectory() const {
   return t;
 }
 
-protocol::CapturedView SharedAgent::capture_locked() const {
+SharedAgent::Staged SharedAgent::capture_locked() const {
   // The engine works on the view while scans keep changing the map: it gets
   // its own frozen copy.
-  auto map = std::make_shared<const MultiResMap>(agent_->slam().map());
-  protocol::CapturedView v{agent_->view(locate_), agent_->last_scan()->timestamp, map};
-  v.view.map = map.get();
-  return v;
+  const MultiResMap& working = agent_->slam().map();
+  const MultiResMap& own = agent_->slam().own_map();
+  auto map = std::make_shared<const MultiResMap>(working);
+  Staged s{{agent_->view(locate_), agent_->last_scan()->timestamp, map},
+           &working == &own ? map : std::make_shared<const MultiResMap>(own),
+           &working == &own ? std::vector<LayerVersion>{} : installed_};
+  s.view.view.map = map.get();
+  return s;
+}
+
+// In one process an encounter sees every merge of the encounters before it
+// (each ends before the next begins). A robot process builds a merged map in
+// the background, so the view taken at the scan may lack a merge that came in
+// since: then its map is composed again, from the own map at the scan and
+// what the robot knows now. The composing is the swarm thread's, off the scan path.
+protocol::CapturedView SharedAgent::up_to_date(Staged staged) const {
+  std::vector<MapLayer> layers;
+  {
+    std::lock_guard lock(mutex_);
+    layers = agent_->knowledge().layers();
+  }
+  if (same_layers(staged.layers, versions_of(layers))) return std::move(staged.view);
+  auto map = std::make_shared<const MultiResMap>(compose_working_map(*staged.own, layers));
+  staged.view.view.map = map.get();
+  staged.view.keep_alive = map;
+  return std::move(staged.view);
 }
 
 void SharedAgent::stage_view(const std::string& peer, std::uint64_t encounter) {
@@ -60,14 +104,18 @@ void SharedAgent::stage_view(const std::string& peer, std::uint64_t encounter) {
 }
 
 std::optional<protocol::CapturedView> SharedAgent::capture_view(const std::string& peer, std::uint64_t encounter) {
-  std::lock_guard lock(mutex_);
-  if (auto it = staged_.find({peer, encounter}); it != staged_.end()) {
-    protocol::CapturedView v = std::move(it->second);
-    staged_.erase(it);
-    return v;
+  std::optional<Staged> staged;
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = staged_.find({peer, encounter}); it != staged_.end()) {
+      staged = std::move(it->second);
+      staged_.erase(it);
+    } else if (agent_->last_scan()) {
+      staged = capture_locked();
+    }
   }
-  if (!agent_->last_scan()) return std::nullopt;
-  return capture_locked();
+  if (!staged) return std::nullopt;
+  return up_to_date(std::move(*staged));
 }
 
 MapSnapshot SharedAgent::snapshot() {
@@ -129,6 +177,7 @@ std::vector<std::uint64_t> SharedAgent::install_ready() {
   auto [working, job] = std::move(*ready_);
   ready_.reset();
   agent_->install(std::move(working), job.job.own_version);
+  installed_ = versions_of(job.job.foreign);
   return job.encounters;
 }
 

@@ -60,7 +60,16 @@ class SharedAgent : public protocol::AgentPort {
   bool composing() const;
 
  private:
-  protocol::CapturedView capture_locked() const;
+  // A view as taken at its scan, with what it takes to bring its map up to
+  // the knowledge the robot has when the encounter opens (merges that came
+  // in since, from its earlier encounters).
+  struct Staged {
+    protocol::CapturedView view;
+    std::shared_ptr<const MultiResMap> own;  // own map at the scan
+    std::vector<LayerVersion> layers;        // the foreign layers view.map holds
+  };
+  Staged capture_locked() const;
+  protocol::CapturedView up_to_date(Staged staged) const;
   Trajectory optimized_trajectory() const;  // under the lock
   void compose_loop();
 
@@ -68,7 +77,8 @@ class SharedAgent : public protocol::AgentPort {
   std::unique_ptr<SwarmAgent> agent_;
   RelativePoseConfig locate_;
   Trajectory trajectory_;
-  std::map<std::pair<std::string, std::uint64_t>, protocol::CapturedView> staged_;
+  std::map<std::pair<std::string, std::uint64_t>, Staged> staged_;
+  std::vector<LayerVersion> installed_;  // the foreign layers the working map holds
   // Composer: the newest job only (knowledge only grows, so it contains the
   // older ones), the encounters it carries, and its result for the scan loop.
   struct Job {

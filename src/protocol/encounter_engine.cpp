@@ -49,6 +49,7 @@ struct EncounterEngine::Exchange {
   std::vector<Pose2> my_pending;
   bool decided = false;
   bool accepted = false;
+  double joined = 0.0;  // the caller's clock when it opened (time-outs count from here)
   TransferAssembler incoming;
   EncounterOutcome outcome;
 };
@@ -105,12 +106,18 @@ void EncounterEngine::remember_ended(const Key& key) {
 
 void EncounterEngine::start(const std::string& peer, std::uint64_t encounter, double now) {
   join(peer, encounter, now);
+  resume_waiting(now);
+}
+
+bool EncounterEngine::blocked(std::uint64_t encounter) const {
+  return std::any_of(open_.begin(), open_.end(), [&](const auto& entry) { return entry.first.second < encounter; });
 }
 
 EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::uint64_t encounter, double now) {
   if (peer == self_) return nullptr;
   const Key key{peer, encounter};
   if (auto it = open_.find(key); it != open_.end()) return it->second.get();
+  if (waiting_.contains(key)) return nullptr;
   if (ended_.contains(key)) {  // e.g. a restarted peer offering it again: it ends once
     send(nullptr, peer, Decline{encounter, fmt::format("encounter {} has ended for {}", encounter, self_)});
     return nullptr;
@@ -119,20 +126,33 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
     decline(peer, encounter, EncounterOutcome::Decline::merging_off, "merging is off", now);
     return nullptr;
   }
-  const double since = now - peers_[peer].last_merge;
-  if (since < config_.remerge_interval) {
-    decline(peer, encounter, EncounterOutcome::Decline::merged_recently,
-            fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, since, config_.remerge_interval),
-            now);
+  if (open_encounters() >= config_.max_open_encounters) {
+    decline(peer, encounter, EncounterOutcome::Decline::busy,
+            fmt::format("busy: {} encounters open", open_encounters()), now);
     return nullptr;
   }
-  if (open_.size() >= config_.max_open_encounters) {
-    decline(peer, encounter, EncounterOutcome::Decline::busy, fmt::format("busy: {} encounters open", open_.size()), now);
+  if (blocked(encounter)) {
+    waiting_.emplace(key, Waiting{now, std::nullopt, 0});
+    return nullptr;
+  }
+  return open(peer, encounter, now, now);
+}
+
+// Opens encounter (peer, encounter) of event time `since`; `now` is later
+// when it waited for an earlier one.
+EncounterEngine::Exchange* EncounterEngine::open(const std::string& peer, std::uint64_t encounter, double since,
+                                                 double now) {
+  const double after_merge = since - peers_[peer].last_merge;
+  if (after_merge < config_.remerge_interval) {
+    decline(peer, encounter, EncounterOutcome::Decline::merged_recently,
+            fmt::format("merged with {} {:.1f} s ago (re-merge interval {:.0f} s)", peer, after_merge,
+                        config_.remerge_interval),
+            since);
     return nullptr;
   }
   std::optional<CapturedView> view = port_.capture_view(peer, encounter);
   if (!view) {
-    decline(peer, encounter, EncounterOutcome::Decline::no_scan, "no scan yet", now);
+    decline(peer, encounter, EncounterOutcome::Decline::no_scan, "no scan yet", since);
     return nullptr;
   }
   auto x = std::make_unique<Exchange>();
@@ -140,6 +160,7 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
   x->id = encounter;
   x->self_is_a = self_ < peer;
   x->mine = std::move(*view);
+  x->joined = now;
   EncounterOutcome& o = x->outcome;
   o.encounter = encounter;
   o.self = self_;
@@ -147,7 +168,7 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
   o.self_is_a = x->self_is_a;
   o.self_pose = x->mine.view.pose;
   o.self_stamp = x->mine.stamp;
-  o.started = now;
+  o.started = since;
   Offer offer;
   offer.encounter = encounter;
   offer.stamp = x->mine.stamp;
@@ -157,9 +178,42 @@ EncounterEngine::Exchange* EncounterEngine::join(const std::string& peer, std::u
   offer.wide_surroundings = x->mine.view.wide_surroundings;
   offer.inventory = port_.inventory();
   Exchange* raw = x.get();
-  open_.emplace(key, std::move(x));
+  open_.emplace(Key{peer, encounter}, std::move(x));
   send(raw, peer, std::move(offer));
   return raw;
+}
+
+// Starts, in id order, the waiting encounters no earlier open one holds back.
+void EncounterEngine::resume_waiting(double now) {
+  for (;;) {
+    auto next = std::min_element(waiting_.begin(), waiting_.end(),
+                                 [](const auto& x, const auto& y) { return x.first.second < y.first.second; });
+    if (next == waiting_.end() || blocked(next->first.second)) return;
+    const Key key = next->first;
+    Waiting w = std::move(next->second);
+    waiting_.erase(next);
+    Exchange* x = open(key.first, key.second, w.since, now);
+    if (x && w.offer) take_offer(*x, *w.offer, w.offer_bytes, now);
+  }
+}
+
+void EncounterEngine::end_waiting(const Key& key, EncounterOutcome::End end, EncounterOutcome::Decline why,
+                                  std::string reason, double now) {
+  auto it = waiting_.find(key);
+  if (it == waiting_.end()) return;
+  EncounterOutcome o;
+  o.encounter = key.second;
+  o.self = self_;
+  o.peer = key.first;
+  o.self_is_a = self_ < key.first;
+  o.end = end;
+  o.decline = why;
+  o.reason = std::move(reason);
+  o.started = it->second.since;
+  o.ended = now;
+  outcomes_.push_back(std::move(o));
+  remember_ended(key);
+  waiting_.erase(it);
 }
 
 void EncounterEngine::receive(const Message& message, std::size_t wire_bytes, double now) {
@@ -177,25 +231,37 @@ void EncounterEngine::receive(const Message& message, std::size_t wire_bytes, do
     on_decline(from, *d, wire_bytes, now);
   }
   // Heartbeats are the agent's business.
+  resume_waiting(now);
 }
 
 void EncounterEngine::on_offer(const std::string& peer, const Offer& offer, std::size_t bytes, double now) {
   // An offer is also an invitation: the proximity event may not have reached us.
   Exchange* x = join(peer, offer.encounter, now);
-  if (!x || x->offer) return;
-  x->offer = offer;
-  x->outcome.bytes_received += bytes;
-  x->outcome.peer_pose = offer.pose;
-  x->outcome.peer_stamp = offer.stamp;
+  if (x) {
+    take_offer(*x, offer, bytes, now);
+    return;
+  }
+  if (auto w = waiting_.find({peer, offer.encounter}); w != waiting_.end() && !w->second.offer) {
+    w->second.offer = offer;
+    w->second.offer_bytes = bytes;
+  }
+}
+
+void EncounterEngine::take_offer(Exchange& x, const Offer& offer, std::size_t bytes, double now) {
+  if (x.offer) return;
+  x.offer = offer;
+  x.outcome.bytes_received += bytes;
+  x.outcome.peer_pose = offer.pose;
+  x.outcome.peer_stamp = offer.stamp;
   const auto t0 = std::chrono::steady_clock::now();
   // A places B with the pair's seed, B places A with the next one.
-  x->my_placement = locate_peer(x->mine.view, view_of(offer), config_.encounter, seed_for(*x) + (x->self_is_a ? 0 : 1));
-  x->outcome.compute_ms = ms_since(t0);
-  if (std::optional<Pose2> known = port_.known_frame(peer))
-    x->my_known = x->self_is_a ? *known : known->inverse();  // as B's frame in A's
-  x->my_pending = peers_[peer].pending;
-  send(x, peer, Placement{offer.encounter, *x->my_placement, x->my_known, x->my_pending, x->outcome.compute_ms});
-  if (x->their_placement) decide(*x, now);
+  x.my_placement = locate_peer(x.mine.view, view_of(offer), config_.encounter, seed_for(x) + (x.self_is_a ? 0 : 1));
+  x.outcome.compute_ms = ms_since(t0);
+  if (std::optional<Pose2> known = port_.known_frame(x.peer))
+    x.my_known = x.self_is_a ? *known : known->inverse();  // as B's frame in A's
+  x.my_pending = peers_[x.peer].pending;
+  send(&x, x.peer, Placement{offer.encounter, *x.my_placement, x.my_known, x.my_pending, x.outcome.compute_ms});
+  if (x.their_placement) decide(x, now);
 }
 
 void EncounterEngine::on_placement(const std::string& peer, const Placement& placement, std::size_t bytes,
@@ -311,6 +377,8 @@ void EncounterEngine::absorb_transfer(Exchange& x, double now) {
 }
 
 void EncounterEngine::on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now) {
+  end_waiting({peer, decline.encounter}, EncounterOutcome::End::declined, EncounterOutcome::Decline::by_peer,
+              peer + " declined: " + decline.reason, now);
   auto it = open_.find({peer, decline.encounter});
   if (it == open_.end()) return;
   it->second->outcome.bytes_received += bytes;
@@ -332,23 +400,41 @@ void EncounterEngine::finish(const Key& key, EncounterOutcome::End end, std::str
 
 void EncounterEngine::drop_peer(const std::string& peer, const std::string& why, double now) {
   std::vector<Key> keys;
+  for (const auto& [key, w] : waiting_)
+    if (key.first == peer) keys.push_back(key);
+  for (const Key& k : keys) end_waiting(k, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, why, now);
+  keys.clear();
   for (const auto& [key, x] : open_)
     if (key.first == peer) keys.push_back(key);
   for (const Key& k : keys) finish(k, EncounterOutcome::End::abandoned, why, now);
+  resume_waiting(now);
 }
 
 void EncounterEngine::abandon_all(const std::string& why, double now) {
+  while (!waiting_.empty())
+    end_waiting(waiting_.begin()->first, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, why, now);
   while (!open_.empty()) finish(open_.begin()->first, EncounterOutcome::End::abandoned, why, now);
 }
 
 void EncounterEngine::tick(double now) {
   std::vector<std::pair<Key, const char*>> late;
   for (const auto& [key, x] : open_)
-    if (now - x->outcome.started > config_.exchange_timeout)
+    if (now - x->joined > config_.exchange_timeout)
       late.push_back({key, !x->offer ? "offer" : !x->their_placement ? "placement" : "snapshot"});
   for (const auto& [key, stage] : late)
     finish(key, EncounterOutcome::End::abandoned,
            fmt::format("timed out after {:.0f} s waiting for {}'s {}", config_.exchange_timeout, key.first, stage), now);
+  // One that waited that long for this robot's earlier encounters: the peer has given up on it.
+  std::vector<Key> stale;
+  for (const auto& [key, w] : waiting_)
+    if (now - w.since > config_.exchange_timeout) stale.push_back(key);
+  for (const Key& key : stale) {
+    const std::string reason =
+        fmt::format("waited {:.0f} s for {}'s earlier encounters to end", config_.exchange_timeout, self_);
+    send(nullptr, key.first, Decline{key.second, reason});
+    end_waiting(key, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, reason, now);
+  }
+  resume_waiting(now);
 }
 
 }  // namespace dsswarm::protocol

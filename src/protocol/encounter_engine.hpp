@@ -7,6 +7,10 @@
 // keeps per peer (re-merge timer, transforms awaiting confirmation) lives
 // here, and every random seed derives from the pair and the encounter id,
 // so two processes compute exactly what one process would.
+// A robot runs its encounters in id order (the order of the events): one
+// that comes while an earlier one is still open waits for it to end, so it
+// starts from the map and knowledge that earlier merge left, as it would in
+// one process where every encounter ends before the next begins.
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -92,7 +96,8 @@ class EncounterEngine {
 
   std::vector<Outgoing> take_outbox() { return std::exchange(outbox_, {}); }
   std::vector<EncounterOutcome> take_outcomes() { return std::exchange(outcomes_, {}); }
-  std::size_t open_encounters() const { return open_.size(); }
+  // Encounters open or waiting for an earlier one to end.
+  std::size_t open_encounters() const { return open_.size() + waiting_.size(); }
   const std::string& self() const { return self_; }
   // Bytes held by incoming transfers in progress (bounded by the open-encounter cap).
   std::size_t buffered_bytes() const;
@@ -104,9 +109,21 @@ class EncounterEngine {
     double last_merge = -1e300;
     std::vector<Pose2> pending;  // verified, unconfirmed: B's frame in A's
   };
+  // An encounter waiting for an earlier one of this robot to end.
+  struct Waiting {
+    double since = 0.0;  // when it would have started
+    std::optional<Offer> offer;  // the peer's, if it came meanwhile
+    std::size_t offer_bytes = 0;
+  };
 
   Exchange* join(const std::string& peer, std::uint64_t encounter, double now);
+  Exchange* open(const std::string& peer, std::uint64_t encounter, double since, double now);
+  bool blocked(std::uint64_t encounter) const;
+  void resume_waiting(double now);
+  void end_waiting(const Key& key, EncounterOutcome::End end, EncounterOutcome::Decline decline, std::string reason,
+                   double now);
   void on_offer(const std::string& peer, const Offer& offer, std::size_t bytes, double now);
+  void take_offer(Exchange& x, const Offer& offer, std::size_t bytes, double now);
   void on_placement(const std::string& peer, const Placement& placement, std::size_t bytes, double now);
   void on_chunk(const std::string& peer, const Chunk& chunk, std::size_t bytes, double now);
   void on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now);
@@ -126,6 +143,7 @@ class EncounterEngine {
   AgentPort& port_;
   MessageStamper stamper_;
   std::map<Key, std::unique_ptr<Exchange>> open_;
+  std::map<Key, Waiting> waiting_;
   std::map<std::string, PeerState> peers_;
   std::set<Key> ended_;           // bounded by config_.remembered_encounters,
   std::deque<Key> ended_order_;   // the oldest forgotten first
