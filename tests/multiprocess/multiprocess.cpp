@@ -99,6 +99,9 @@ net::SwarmLinkConfig tap_config(const std::string& partition, const std::string&
   net::SwarmLinkConfig c;
   c.name = name;
   c.partition = partition;
+  // The tap writes a 2 MiB message on purpose; on a loaded machine its
+  // acknowledgement can hold the next write past the agents' 0.5 s.
+  c.max_blocking = std::chrono::seconds(10);
   return c;
 }
 
