@@ -28,6 +28,7 @@ AgentOptions resolved(AgentOptions o) {
   o.swarm.validate();
   if (!(o.time_scale > 0.0)) throw ConfigError("agent: the time scale (playback rate) must be > 0");
   o.swarm.exchange_timeout *= o.time_scale;  // the same wall time on the play clock
+  o.swarm.offer_timeout *= o.time_scale;
   if (!(o.heartbeat_period > 0.0) || !(o.peer_timeout > o.heartbeat_period))
     throw ConfigError("agent: the peer timeout must exceed the heartbeat period, both > 0");
   if (o.incarnation == 0)
@@ -116,7 +117,9 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
     if (!exhausted_at) exhausted_at = now();
     const double idle = now() - *exhausted_at;
     const bool busy = open_encounters_.load() > 0 || shared_->composing();
-    if (idle >= options_.linger && (!busy || idle >= options_.linger + options_.swarm.exchange_timeout)) break;
+    // Encounters still running or queued (the longest wait is a peer's offer) may finish.
+    const double grace = std::max(options_.swarm.exchange_timeout, options_.swarm.offer_timeout);
+    if (idle >= options_.linger && (!busy || idle >= options_.linger + grace)) break;
   }
   stop_swarm_ = true;
   link_.wake();

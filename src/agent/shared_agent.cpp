@@ -71,8 +71,8 @@ SharedAgent::Staged SharedAgent::capture_locked() const {
   const MultiResMap& working = agent_->slam().map();
   const MultiResMap& own = agent_->slam().own_map();
   auto map = std::make_shared<const MultiResMap>(working);
-  Staged s{{agent_->view(locate_), agent_->last_scan()->timestamp, map},
-           &working == &own ? map : std::make_shared<const MultiResMap>(own),
+  Staged s{{agent_->view(locate_), agent_->last_scan()->timestamp, map,
+            &working == &own ? map : std::make_shared<const MultiResMap>(own), agent_->own_version()},
            &working == &own ? std::vector<LayerVersion>{} : installed_};
   s.view.view.map = map.get();
   return s;
@@ -90,7 +90,7 @@ protocol::CapturedView SharedAgent::up_to_date(Staged staged) const {
     layers = agent_->knowledge().layers();
   }
   if (same_layers(staged.layers, versions_of(layers))) return std::move(staged.view);
-  auto map = std::make_shared<const MultiResMap>(compose_working_map(*staged.own, layers));
+  auto map = std::make_shared<const MultiResMap>(compose_working_map(*staged.view.own, layers));
   staged.view.view.map = map.get();
   staged.view.keep_alive = map;
   return std::move(staged.view);
@@ -118,8 +118,11 @@ std::optional<protocol::CapturedView> SharedAgent::capture_view(const std::strin
   return up_to_date(std::move(*staged));
 }
 
-MapSnapshot SharedAgent::snapshot() {
+MapSnapshot SharedAgent::snapshot(const protocol::CapturedView& at) {
   std::lock_guard lock(mutex_);
+  // As at the view's scan, as in one process: what the peer receives does not
+  // depend on how long the exchange took.
+  if (at.own) return agent_->knowledge().snapshot(at.own, at.own_version);
   return agent_->snapshot();
 }
 

@@ -37,7 +37,7 @@ class SharedAgent : public protocol::AgentPort {
 
   // protocol::AgentPort (swarm thread).
   std::optional<protocol::CapturedView> capture_view(const std::string& peer, std::uint64_t encounter) override;
-  MapSnapshot snapshot() override;
+  MapSnapshot snapshot(const protocol::CapturedView& at) override;
   std::vector<LayerVersion> inventory() const override;
   std::optional<Pose2> known_frame(const std::string& origin) const override;
   void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) override;
@@ -64,9 +64,8 @@ class SharedAgent : public protocol::AgentPort {
   // the knowledge the robot has when the encounter opens (merges that came
   // in since, from its earlier encounters).
   struct Staged {
-    protocol::CapturedView view;
-    std::shared_ptr<const MultiResMap> own;  // own map at the scan
-    std::vector<LayerVersion> layers;        // the foreign layers view.map holds
+    protocol::CapturedView view;       // view.own: the own map at the scan
+    std::vector<LayerVersion> layers;  // the foreign layers view.map holds
   };
   Staged capture_locked() const;
   protocol::CapturedView up_to_date(Staged staged) const;

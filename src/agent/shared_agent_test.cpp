@@ -61,5 +61,28 @@ TEST(SharedAgent, AViewTakenBeforeAMergeIsBroughtUpToTheKnowledgeWhenItsEncounte
   EXPECT_EQ(v->stamp, 1000.0 + 0.1 * 19);  // still the staged scan's
 }
 
+// The snapshot an encounter sends holds the own map as at the view's scan,
+// however many scans came in while the exchange ran (as in one process).
+TEST(SharedAgent, TheSnapshotSendsTheOwnMapAsAtTheViewsScan) {
+  SharedAgent a(robot_after_drive("a", kStartA, {3.0, 2.0, 0.1}, 1), RelativePoseConfig{});
+  a.stage_view("b", 1);
+  const std::optional<protocol::CapturedView> v = a.capture_view("b", 1);
+  ASSERT_TRUE(v);
+  const std::uint64_t at_view = a.with_agent([](const SwarmAgent& x) { return x.own_version(); });
+  EXPECT_EQ(v->own_version, at_view);
+  Rng rng(5);
+  const Pose2 next{3.2, 2.0, 0.1};
+  LaserScan scan = simulate_scan(test::l_shaped_office(), next, test::full_circle_lidar(), rng);
+  scan.timestamp = 1002.0;
+  scan.odometry = kStartA.inverse() * next;
+  a.process(scan);
+  ASSERT_GT(a.with_agent([](const SwarmAgent& x) { return x.own_version(); }), at_view);
+  const MapSnapshot sent = a.snapshot(*v);
+  ASSERT_FALSE(sent.layers.empty());
+  EXPECT_EQ(sent.layers[0].origin, "a");
+  EXPECT_EQ(sent.layers[0].version, at_view);
+  EXPECT_EQ(sent.layers[0].map.get(), v->own.get());
+}
+
 }  // namespace
 }  // namespace dsswarm::agent

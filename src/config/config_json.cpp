@@ -250,6 +250,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"confirm_xy", DSS_SWARM_FIELD(double, confirm_xy)},
         {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)},
         {"exchange_timeout", DSS_SWARM_FIELD(double, exchange_timeout)},
+        {"offer_timeout", DSS_SWARM_FIELD(double, offer_timeout)},
         {"chunk_bytes", DSS_SWARM_FIELD(std::size_t, chunk_bytes)},
         {"max_open_encounters", DSS_SWARM_FIELD(std::size_t, max_open_encounters)},
         {"max_pending_confirmations", DSS_SWARM_FIELD(std::size_t, max_pending_confirmations)},

@@ -49,7 +49,7 @@ struct EncounterEngine::Exchange {
   std::vector<Pose2> my_pending;
   bool decided = false;
   bool accepted = false;
-  double joined = 0.0;  // the caller's clock when it opened (time-outs count from here)
+  double progress = 0.0;  // the caller's clock when it opened, then when the peer's offer came (time-outs count from here)
   TransferAssembler incoming;
   EncounterOutcome outcome;
 };
@@ -160,7 +160,7 @@ EncounterEngine::Exchange* EncounterEngine::open(const std::string& peer, std::u
   x->id = encounter;
   x->self_is_a = self_ < peer;
   x->mine = std::move(*view);
-  x->joined = now;
+  x->progress = now;
   EncounterOutcome& o = x->outcome;
   o.encounter = encounter;
   o.self = self_;
@@ -250,6 +250,7 @@ void EncounterEngine::on_offer(const std::string& peer, const Offer& offer, std:
 void EncounterEngine::take_offer(Exchange& x, const Offer& offer, std::size_t bytes, double now) {
   if (x.offer) return;
   x.offer = offer;
+  x.progress = now;
   x.outcome.bytes_received += bytes;
   x.outcome.peer_pose = offer.pose;
   x.outcome.peer_stamp = offer.stamp;
@@ -320,7 +321,7 @@ void EncounterEngine::confirm(Exchange& x) {
 }
 
 void EncounterEngine::send_transfer(Exchange& x) {
-  MapSnapshot all = port_.snapshot();
+  MapSnapshot all = port_.snapshot(x.mine);
   MapSnapshot lacking;
   lacking.sender = self_;
   for (MapLayer& l : all.layers)
@@ -417,20 +418,27 @@ void EncounterEngine::abandon_all(const std::string& why, double now) {
 }
 
 void EncounterEngine::tick(double now) {
-  std::vector<std::pair<Key, const char*>> late;
-  for (const auto& [key, x] : open_)
-    if (now - x->joined > config_.exchange_timeout)
-      late.push_back({key, !x->offer ? "offer" : !x->their_placement ? "placement" : "snapshot"});
-  for (const auto& [key, stage] : late)
-    finish(key, EncounterOutcome::End::abandoned,
-           fmt::format("timed out after {:.0f} s waiting for {}'s {}", config_.exchange_timeout, key.first, stage), now);
+  struct Late {
+    Key key;
+    const char* stage;
+    double limit;
+  };
+  std::vector<Late> late;
+  for (const auto& [key, x] : open_) {
+    const double limit = x->offer ? config_.exchange_timeout : config_.offer_timeout;
+    if (now - x->progress > limit)
+      late.push_back({key, !x->offer ? "offer" : !x->their_placement ? "placement" : "snapshot", limit});
+  }
+  for (const Late& l : late)
+    finish(l.key, EncounterOutcome::End::abandoned,
+           fmt::format("timed out after {:.0f} s waiting for {}'s {}", l.limit, l.key.first, l.stage), now);
   // One that waited that long for this robot's earlier encounters: the peer has given up on it.
   std::vector<Key> stale;
   for (const auto& [key, w] : waiting_)
-    if (now - w.since > config_.exchange_timeout) stale.push_back(key);
+    if (now - w.since > config_.offer_timeout) stale.push_back(key);
   for (const Key& key : stale) {
     const std::string reason =
-        fmt::format("waited {:.0f} s for {}'s earlier encounters to end", config_.exchange_timeout, self_);
+        fmt::format("waited {:.0f} s for {}'s earlier encounters to end", config_.offer_timeout, self_);
     send(nullptr, key.first, Decline{key.second, reason});
     end_waiting(key, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, reason, now);
   }

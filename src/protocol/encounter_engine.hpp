@@ -35,6 +35,10 @@ struct CapturedView {
   EncounterView view;  // view.map stays valid while keep_alive lives
   double stamp = 0.0;  // log time of the scan in view
   std::shared_ptr<const void> keep_alive;
+  // The own map as at that scan and its version, when the robot goes on
+  // mapping meanwhile (a robot process): what the snapshot sends of it.
+  std::shared_ptr<const MultiResMap> own;
+  std::uint64_t own_version = 0;
 };
 
 // What the engine needs of its robot.
@@ -43,7 +47,8 @@ class AgentPort {
   virtual ~AgentPort() = default;
   // The robot's view for encounter `encounter` with `peer`; nullopt before its first scan.
   virtual std::optional<CapturedView> capture_view(const std::string& peer, std::uint64_t encounter) = 0;
-  virtual MapSnapshot snapshot() = 0;  // own map (layer 0) and everything known
+  // Own map (layer 0: `at`'s own map if it holds one, else the current one) and everything known.
+  virtual MapSnapshot snapshot(const CapturedView& at) = 0;
   virtual std::vector<LayerVersion> inventory() const = 0;  // what snapshot() would hold, without copying
   // The pose of `origin`'s map frame in this robot's frame, if it holds that robot's map.
   virtual std::optional<Pose2> known_frame(const std::string& origin) const = 0;

@@ -31,9 +31,9 @@ class FakeRobot : public AgentPort {
   }
   std::optional<CapturedView> capture_view(const std::string&, std::uint64_t encounter) override {
     captured.push_back({encounter, merges});
-    return CapturedView{view, 100.0, nullptr};
+    return CapturedView{view, 100.0, nullptr, nullptr, 0};
   }
-  MapSnapshot snapshot() override { return knowledge.snapshot(own, 11); }
+  MapSnapshot snapshot(const CapturedView&) override { return knowledge.snapshot(own, 11); }
   std::vector<LayerVersion> inventory() const override {
     std::vector<LayerVersion> out{{knowledge.self(), 11, 0}};
     for (const MapLayer& l : knowledge.layers()) out.push_back({l.origin, l.version, l.hops});
@@ -365,7 +365,7 @@ TEST(EncounterEngine, ALaterEncounterWaitsForTheEarlierOneAndSeesItsMerge) {
 
 TEST(EncounterEngine, AnEncounterThatWaitedTooLongIsDeclinedToThePeer) {
   Trio t;
-  const double timeout = unconfirmed().exchange_timeout;
+  const double timeout = unconfirmed().offer_timeout;
   t.e("a").start("b", 1, 0.0);
   t.e("a").start("c", 2, 0.0);
   t.e("c").start("a", 2, 0.0);

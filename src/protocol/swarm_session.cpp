@@ -36,9 +36,9 @@ struct SwarmSession::Robot {
 
     std::optional<protocol::CapturedView> capture_view(const std::string&, std::uint64_t) override {
       if (!agent_.last_scan()) return std::nullopt;
-      return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr};
+      return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr, nullptr, 0};
     }
-    MapSnapshot snapshot() override { return agent_.snapshot(); }
+    MapSnapshot snapshot(const protocol::CapturedView&) override { return agent_.snapshot(); }  // nothing moved on
     std::vector<LayerVersion> inventory() const override { return agent_.inventory(); }
     std::optional<Pose2> known_frame(const std::string& origin) const override {
       const MapLayer* l = agent_.knowledge().find(origin);

@@ -10,6 +10,7 @@ void SwarmConfig::validate() const {
   if (!(remerge_interval >= 0.0)) throw ConfigError("swarm.remerge_interval must be >= 0 s");
   if (!(confirm_xy > 0.0) || !(confirm_theta > 0.0)) throw ConfigError("swarm.confirm_xy and confirm_theta must be > 0");
   if (!(exchange_timeout > 0.0)) throw ConfigError("swarm.exchange_timeout must be > 0 s");
+  if (!(offer_timeout > 0.0)) throw ConfigError("swarm.offer_timeout must be > 0 s");
   if (chunk_bytes < 1024 || chunk_bytes > 512 * 1024) throw ConfigError("swarm.chunk_bytes must be in [1024, 524288]");
   if (max_open_encounters < 1) throw ConfigError("swarm.max_open_encounters must be >= 1");
   if (remembered_encounters < 1) throw ConfigError("swarm.remembered_encounters must be >= 1");

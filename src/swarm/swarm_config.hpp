@@ -32,8 +32,13 @@ struct SwarmConfig {
   double confirm_xy = 0.25;      // m
   double confirm_theta = 0.035;  // rad (2°)
   // The exchange itself (protocol/): an encounter not finished in this long
-  // is abandoned, its partial transfer discarded (a peer vanished).
+  // after both robots joined is abandoned, its partial transfer discarded (a
+  // peer vanished). A peer joins (sends its offer) only once its earlier
+  // encounters have ended: when many robots meet at once that can take a
+  // while, so the wait for its offer has its own, longer limit (a peer that
+  // dies meanwhile is dropped sooner, when its heartbeats stop).
   double exchange_timeout = 30.0;       // s
+  double offer_timeout = 90.0;          // s
   std::size_t chunk_bytes = 60000;      // snapshot bytes per message
   std::size_t max_open_encounters = 16; // at once, with any peers (bounds memory)
   std::size_t max_pending_confirmations = 16;  // per peer, oldest dropped
