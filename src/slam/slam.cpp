@@ -13,6 +13,7 @@ void SlamConfig::validate() const {
   matcher.validate();
   motion.validate();
   verify.validate();
+  degeneracy.validate();
   insert.validate();
   submaps.validate();
   loop_closure.validate();
@@ -186,6 +187,7 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
   // pull a moving robot back to where it was.
   std::vector<Pose2> priors{step.prior};
   if (const std::optional<Pose2> constant_velocity = motion_.doubt(step.prior)) priors.push_back(*constant_velocity);
+  const bool prior_trusted = priors.size() == 1;  // odometry and constant velocity agree
   const MultiResMap& map = matching_map();
   MatchResult m = matcher_.match(map, points, priors);
   MatchQuality q = match_quality(map.finest(), points, m.pose);
@@ -212,6 +214,9 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
     return;
   }
   step.pose = m.pose;
+  if (prior_trusted)
+    if (const std::optional<Eigen::Vector2d> weak = weak_direction(points, config_.degeneracy))
+      step.pose = hold_along(step.prior, m.pose, *weak);
   step.matched = true;
   ++matched_;
   verifier_.note_accepted(q, matched_ <= 1);

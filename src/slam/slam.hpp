@@ -27,6 +27,7 @@
 #include "matching/monte_carlo_matcher.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/scan_points.hpp"
+#include "slam/degeneracy.hpp"
 #include "slam/executor.hpp"
 #include "slam/gap_reviser.hpp"
 #include "slam/loop_closer.hpp"
@@ -57,6 +58,9 @@ struct SlamConfig {
   int min_points = 20;         // scans with fewer valid points are not matched (pose = prior)
   MotionConfig motion;
   VerifyConfig verify;
+  // Where a scan leaves a direction unconstrained (a corridor with its end
+  // out of range), the pose along it follows the prediction (degeneracy.hpp).
+  DegeneracyConfig degeneracy;
   // A robot whose odometry has not changed for this many scans (after it
   // first moved) is standing still (see standing_still.hpp). Needs use_odometry.
   int pause_after_still_scans = 20;  // 0: never pause

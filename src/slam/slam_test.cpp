@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <limits>
 #include <optional>
 
@@ -274,6 +275,32 @@ TEST(Slam, ARobotStandingStillHoldsItsPoseAndStopsAddingEvidence) {
   EXPECT_TRUE(moving.matched);
   EXPECT_NEAR(moving.pose.x, 2.0, 0.05);
   EXPECT_EQ(slam.scans_inserted(), inserted_when_stopping + 1);
+}
+
+
+// A featureless corridor whose far end is beyond the lidar's range: the scan
+// pins the robot across it and not along it. Driving into it, the pose must
+// follow the (exact) odometry along the corridor instead of being pulled back
+// to where the map already is.
+TEST(Slam, AFeaturelessCorridorDoesNotHoldAMovingRobotBack) {
+  const std::vector<Segment> corridor = {{{-1, -1.45}, {80, -1.45}}, {{80, 1.45}, {-1, 1.45}}};
+  auto drive_in = [&](const SlamConfig& config) {
+    Slam slam(config);
+    Pose2 est;
+    for (int k = 0; k < 300; ++k) {
+      const Pose2 truth(0.06 * k, 0.0, 0.0);
+      LaserScan s = simulate(corridor, truth, 0.1 * k);
+      s.odometry = truth;
+      est = slam.process(s).pose;
+    }
+    return std::abs(est.x - 0.06 * 299);
+  };
+  SlamConfig off = without_loop_closure();
+  off.degeneracy.min_ratio = 0.0;
+  const double held_back = drive_in(off);
+  const double along = drive_in(without_loop_closure());
+  std::cout << "after 18 m: " << held_back << " m behind without the degeneracy check, " << along << " m with it\n";
+  EXPECT_LT(along, 0.05);
 }
 
 }  // namespace
