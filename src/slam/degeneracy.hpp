@@ -23,7 +23,7 @@ namespace dsswarm {
 struct DegeneracyConfig {
   // A scan is degenerate when the smaller eigenvalue of its normals' scatter
   // matrix is below this share of the larger one (0 disables).
-  double min_ratio = 0.02;
+  double min_ratio = 0.01;
   // A point's normal is that of the line through the points within
   // `normal_radius` of it among its `normal_neighbors` scan neighbours each
   // side; fewer than `min_patch` of them, or a patch further from a line than
