@@ -16,9 +16,12 @@ bool MotionPredictor::odometry_stale(const LaserScan& scan) const {
          scan.odometry->y == anchor_odometry_->y && scan.odometry->theta == anchor_odometry_->theta;
 }
 
+bool MotionPredictor::from_odometry(const LaserScan& scan) const {
+  return use_odometry_ && scan.odometry && anchor_odometry_ && !odometry_stale(scan);
+}
+
 Pose2 MotionPredictor::predict(const LaserScan& scan) const {
-  const bool odometry_usable = use_odometry_ && scan.odometry && anchor_odometry_ && !odometry_stale(scan);
-  if (odometry_usable) {
+  if (from_odometry(scan)) {
     // The odometry increment is expressed in the robot frame of the anchor
     // odometry pose, so it applies to our corrected pose whatever the drift
     // between the odometry frame and the map frame.

@@ -25,6 +25,8 @@ class MotionPredictor {
   MotionPredictor(const MotionConfig& config, bool use_odometry) : config_(config), use_odometry_(use_odometry) {}
 
   Pose2 predict(const LaserScan& scan) const;
+  // Does predict(scan) come from fresh odometry (not constant velocity)?
+  bool from_odometry(const LaserScan& scan) const;
   // The constant-velocity prediction when it disagrees sharply with the
   // odometry's `prediction` (see MotionConfig::odometry_doubt_xy), else none.
   std::optional<Pose2> doubt(const Pose2& prediction) const;

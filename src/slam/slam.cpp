@@ -87,6 +87,7 @@ SlamStep Slam::process(const LaserScan& scan) {
   // A new map's frame is the odometry frame; a given map keeps its own.
   if (first && !has_initial_map_ && config_.use_odometry && scan.odometry) motion_.start_at(*scan.odometry);
   step.prior = first ? motion_.pose() : motion_.predict(scan);
+  const bool measured_prior = !first && motion_.from_odometry(scan);
   ++processed_;
   const bool standing_still = standing_still_.update(scan) && !first;
 
@@ -112,7 +113,7 @@ SlamStep Slam::process(const LaserScan& scan) {
   if (first && has_initial_map_ && enough_points) {
     locate_in_initial_map(points, step);
   } else if (!first && enough_points) {
-    match_and_verify(points, step);
+    match_and_verify(points, step, measured_prior);
   }
   // A kept scan ends the gap; only a matched one knows better than the prediction.
   if (step.matched && !gaps_.empty()) step.revised = gaps_.revise(step.pose, step.prior);
@@ -178,7 +179,7 @@ void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep&
   ++matched_;
 }
 
-void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step) {
+void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step, bool measured_prior) {
   // Odometry can lag and then jump (intel and mit-csail do both). When it
   // disagrees sharply with a constant-velocity prediction, search from both
   // and keep the better match. Only then: the score cannot reliably tell a
@@ -187,7 +188,8 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
   // pull a moving robot back to where it was.
   std::vector<Pose2> priors{step.prior};
   if (const std::optional<Pose2> constant_velocity = motion_.doubt(step.prior)) priors.push_back(*constant_velocity);
-  const bool prior_trusted = priors.size() == 1;  // odometry and constant velocity agree
+  // Odometry, fresh, and agreeing with constant velocity.
+  const bool prior_trusted = measured_prior && priors.size() == 1;
   const MultiResMap& map = matching_map();
   MatchResult m = matcher_.match(map, points, priors);
   MatchQuality q = match_quality(map.finest(), points, m.pose);

@@ -6,15 +6,16 @@
 //     scan ─► filter ─► standing still? ─► points ─► prior (motion predictor)
 //          ─► Monte-Carlo matcher against the local map (previous ⊕ current
 //             submap) ─► match verifier (recovery search when it fails)
-//          ─► pose ─► insert into the current submap
+//          ─► degeneracy (hold the prediction along what the scan leaves
+//             free) ─► pose ─► insert into the current submap
 //   global SLAM, in background rounds (loop_closer.hpp):
 //     new nodes ─► loop-closure search in finished submaps nearby ─► verify
 //          ─► pose graph (Ceres) ─► global poses; the global map is the
 //             Dempster combination of the submaps at their optimized poses
 //
 // The pipeline owns one small module per job (motion_predictor,
-// standing_still, match_verifier, recovery, gap_reviser, submaps,
-// loop_closer). No I/O happens here: readers and writers live in src/io,
+// standing_still, match_verifier, degeneracy, recovery, gap_reviser,
+// submaps, loop_closer). No I/O happens here: readers and writers live in src/io,
 // threads in src/runtime.
 #include <cstddef>
 #include <cstdint>
@@ -172,7 +173,9 @@ class Slam {
   // Matches `points` from step.prior (and alternatives), verifies the match
   // (with a recovery search when it fails) and fills step.pose / matched /
   // score; a rejected match leaves the prior. Poses in the local frame.
-  void match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step);
+  // `measured_prior`: the prior is fresh odometry, which may be held along
+  // what the scan leaves free (degeneracy.hpp); an extrapolation may not.
+  void match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step, bool measured_prior);
   // The first scan in a given map: where in it are we? Only the start is known, roughly.
   void locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step);
   const MultiResMap& matching_map() const;
