@@ -42,7 +42,11 @@ void run(Slam& slam, const SimulatedRun& sim) {
 
 TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
   const SimulatedRun sim = long_loop();
-  Slam slam(with_loop_closure());
+  // Without the degeneracy check, whose hold on odometry along the corridors
+  // leaves this world's front end too little drift for the test (0.17-0.26 m).
+  SlamConfig config = with_loop_closure();
+  config.degeneracy.min_ratio = 0.0;
+  Slam slam(config);
   run(slam, sim);
   const Trajectory truth = truth_of(sim);
   const double local = evaluate_ate(stamped(sim, slam.local_trajectory()), truth).rmse;
