@@ -63,7 +63,7 @@ std::optional<Eigen::Vector2d> weak_direction(const std::vector<ScanPoint>& poin
 }
 
 Pose2 hold_along(const Pose2& prior, const Pose2& matched, const Eigen::Vector2d& weak) {
-  const Pose2 d = prior.inverse() * matched;
+  const Pose2 d = between(prior, matched);
   const Eigen::Vector2d t(d.x, d.y);
   const Eigen::Vector2d kept = t - t.dot(weak) * weak;
   return prior * Pose2(kept.x(), kept.y(), d.theta);

@@ -280,12 +280,15 @@ TEST(Slam, ARobotStandingStillHoldsItsPoseAndStopsAddingEvidence) {
 }
 
 
+// 80 m long, 2.9 m wide, no features: its far end is beyond the lidar's range.
+std::vector<Segment> featureless_corridor() { return {{{-1, -1.45}, {80, -1.45}}, {{80, 1.45}, {-1, 1.45}}}; }
+
 // A featureless corridor whose far end is beyond the lidar's range: the scan
 // pins the robot across it and not along it. Driving into it, the pose must
 // follow the (exact) odometry along the corridor instead of being pulled back
 // to where the map already is.
 TEST(Slam, AFeaturelessCorridorDoesNotHoldAMovingRobotBack) {
-  const std::vector<Segment> corridor = {{{-1, -1.45}, {80, -1.45}}, {{80, 1.45}, {-1, 1.45}}};
+  const std::vector<Segment> corridor = featureless_corridor();
   auto drive_in = [&](const SlamConfig& config) {
     Slam slam(config);
     Pose2 est;
@@ -311,7 +314,7 @@ TEST(Slam, AFeaturelessCorridorDoesNotHoldAMovingRobotBack) {
 // velocity. That extrapolation is not a measurement: it is not held along
 // the corridor (the robot would slide on with it until it counts as standing still).
 TEST(Slam, AnExtrapolatedPredictionIsNotHeldAlongAFeaturelessCorridor) {
-  const std::vector<Segment> corridor = {{{-1, -1.45}, {80, -1.45}}, {{80, 1.45}, {-1, 1.45}}};
+  const std::vector<Segment> corridor = featureless_corridor();
   Slam slam(without_loop_closure());
   Pose2 est;
   for (int k = 0; k < 119; ++k) {
