@@ -117,9 +117,10 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
     if (!exhausted_at) exhausted_at = now();
     const double idle = now() - *exhausted_at;
     const bool busy = open_encounters_.load() > 0 || shared_->composing();
-    // Encounters still running or queued (the longest wait is a peer's offer) may finish.
-    const double grace = std::max(options_.swarm.exchange_timeout, options_.swarm.offer_timeout);
-    if (idle >= options_.linger && (!busy || idle >= options_.linger + grace)) break;
+    // Encounters still running may finish within one exchange time-out; one
+    // still waiting then for a peer's offer (that peer may be gone or refused)
+    // is recorded as abandoned.
+    if (idle >= options_.linger && (!busy || idle >= options_.linger + options_.swarm.exchange_timeout)) break;
   }
   stop_swarm_ = true;
   link_.wake();
