@@ -79,11 +79,29 @@ class DsGrid {
     out[3] = at({c.x + 1, c.y + 1});
   }
 
+  // The cells of the tile holding `c` (index them with local_index), or null
+  // where nothing was written: for readers that keep a tile across points.
+  const DsMass* tile_cells(CellIndex c) const {
+    const Tile* t = find_tile(c);
+    return t ? t->cells.data() : nullptr;
+  }
+  static int local_index(CellIndex c) {
+    return ((c.y & (kTileSize - 1)) << kTileBits) | (c.x & (kTileSize - 1));
+  }
+
   // Write access: allocates the tile if needed.
   DsMass& mutable_at(CellIndex c) {
     // Inline when the tile exists (insertion writes mostly into existing tiles).
     if (Tile* t = find_tile(c)) return t->cells[local_index(c)];
     return get_or_create_tile(c).cells[local_index(c)];
+  }
+
+  // The cells of the tile holding `c`, allocated if needed: for writers that
+  // keep a tile across cells (a beam crosses dozens of one tile's cells).
+  // The pointer stays valid as long as the grid.
+  DsMass* mutable_tile_cells(CellIndex c) {
+    if (Tile* t = find_tile(c)) return t->cells.data();
+    return get_or_create_tile(c).cells.data();
   }
 
   std::size_t tiles_allocated() const { return tiles_.size(); }
@@ -115,9 +133,6 @@ class DsGrid {
     std::array<DsMass, kTileCells> cells{};
   };
 
-  static int local_index(CellIndex c) {
-    return ((c.y & (kTileSize - 1)) << kTileBits) | (c.x & (kTileSize - 1));
-  }
   // The tile holding `c`, or null (the table holds mutable tiles; const
   // accessors only read through it).
   Tile* find_tile(CellIndex c) const {

@@ -28,24 +28,37 @@ struct BilinearPoint {
   }
 };
 
+// floor() for values well inside the int32 range (cell indices), without the
+// libm call or the long sequence baseline x86-64 compiles std::floor into.
+inline std::int32_t floor_to_cell(double v) {
+  const auto i = static_cast<std::int32_t>(v);  // truncates towards zero
+  return i - static_cast<std::int32_t>(v < static_cast<double>(i));
+}
+
+// The bilinear place of a point given in cell units measured from cell
+// centres (world coordinate / resolution − 0.5).
+inline BilinearPoint bilinear_cell_point(double gx, double gy) {
+  const std::int32_t ix = floor_to_cell(gx), iy = floor_to_cell(gy);
+  return {{ix, iy}, static_cast<float>(gx - ix), static_cast<float>(gy - iy)};
+}
+
 inline BilinearPoint bilinear_point(double wx, double wy, double inv_resolution) {
-  const double gx = wx * inv_resolution - 0.5, gy = wy * inv_resolution - 0.5;
-  const double fx = std::floor(gx), fy = std::floor(gy);
-  return {{static_cast<std::int32_t>(fx), static_cast<std::int32_t>(fy)}, static_cast<float>(gx - fx),
-          static_cast<float>(gy - fy)};
+  return bilinear_cell_point(wx * inv_resolution - 0.5, wy * inv_resolution - 0.5);
 }
 
 // What a cell is worth to a scan point: the belief that it is occupied plus a
 // share `unknown_value` of its unknown mass. With 0 only evidence of an
 // obstacle counts, so a scan is not rewarded for drifting into unexplored
 // space; with 0.5 this is the pignistic occupancy used for display.
+inline float cell_value(const DsMass& m, float unknown_value) { return m.occupied + unknown_value * m.unknown(); }
+
 // The value at a world point, bilinear between cell centres.
 inline float interpolated_occupancy(const DsGrid& grid, double wx, double wy, float unknown_value) {
   const BilinearPoint b = bilinear_point(wx, wy, 1.0 / grid.resolution());
   DsMass q[4];
   grid.quad(b.corner, q);
-  auto value = [unknown_value](const DsMass& m) { return m.occupied + unknown_value * m.unknown(); };
-  return b.interpolate(value(q[0]), value(q[1]), value(q[2]), value(q[3]));
+  return b.interpolate(cell_value(q[0], unknown_value), cell_value(q[1], unknown_value),
+                       cell_value(q[2], unknown_value), cell_value(q[3], unknown_value));
 }
 
 // The masses of `grid` at a world point, bilinear between cell centres: a

@@ -43,18 +43,16 @@ struct MotionPrior {
 };
 
 struct Search {
-  const DsGrid& grid;
-  const std::vector<ScanPoint>& points;
-  std::size_t stride;
-  float unknown_value;
+  const ScanScorer& scorer;
   int budget;  // evaluations left at this level
   MotionPrior prior;
   int used = 0;
 
+  const DsGrid& grid() const { return scorer.grid(); }
   bool exhausted() const { return used >= budget; }
   double score(const Pose2& p) {
     ++used;
-    return score_pose(grid, points, p, stride, unknown_value) - prior.penalty(p);
+    return scorer.score(p) - prior.penalty(p);
   }
 };
 
@@ -132,7 +130,7 @@ void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, dou
   // collapsed well below a cell: further samples can only confirm what the
   // polish will refine. Coarse levels are cheap and do the wide search, so
   // they always use their budget.
-  const double converged_xy = level == 0 ? search.grid.resolution() * config_.converged_fraction : 0.0;
+  const double converged_xy = level == 0 ? search.grid().resolution() * config_.converged_fraction : 0.0;
   int failures = 0;
   while (search.used < random_budget && sigma_xy > converged_xy) {
     const Pose2 candidate(best.x + rng_.normal() * sigma_xy, best.y + rng_.normal() * sigma_xy,
@@ -150,7 +148,7 @@ void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, dou
       failures = 0;
     }
   }
-  polish(search, best, best_score, search.grid.resolution() * 0.5,
+  polish(search, best, best_score, search.grid().resolution() * 0.5,
          config_.polish_step_theta * static_cast<double>(1 << level));
 }
 
@@ -170,8 +168,8 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   Pose2 coarse_best = prior;
   double sigma_xy = config_.sigma_xy, sigma_th = config_.sigma_theta;
   for (int level = levels - 1; level >= 1; --level) {
-    Search search{map.level(level), points, std::size_t{1} << std::min(level, 2), config_.unknown_value, coarse_budget,
-                  motion};
+    const ScanScorer scorer(map.level(level), points, std::size_t{1} << std::min(level, 2), config_.unknown_value);
+    Search search{scorer, coarse_budget, motion};
     double score = search.score(coarse_best);
     search_level(search, level, coarse_best, score, sigma_xy, sigma_th);
     result.evaluations += search.used;
@@ -196,8 +194,9 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
   const int per_start = fine_budget / static_cast<int>(starts.size());
   result.score = -1.0;
+  const ScanScorer fine_scorer(fine, points, 1, config_.unknown_value);
   for (Start& start : starts) {
-    Search search{fine, points, 1, config_.unknown_value, per_start, motion};
+    Search search{fine_scorer, per_start, motion};
     double score = search.score(start.pose);
     search_level(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
     result.evaluations += search.used;
@@ -206,8 +205,8 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
       result.pose = start.pose;
     }
   }
-  result.score = score_pose(fine, points, result.pose, 1, config_.unknown_value);  // without the penalty
-  result.prior_score = score_pose(fine, points, prior, 1, config_.unknown_value);
+  result.score = fine_scorer.score(result.pose);  // without the penalty
+  result.prior_score = fine_scorer.score(prior);
   return result;
 }
 

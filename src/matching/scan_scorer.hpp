@@ -14,19 +14,40 @@
 
 namespace dsswarm {
 
-// Weighted mean occupancy under `points` placed at `pose`; uses every
-// `stride`-th point (coarse levels need fewer points).
+// One scan made ready to score many poses against one grid: the matcher's
+// inner loop. The points are kept in the grid's cell units with weights that
+// sum to 1, so a pose costs one rotation, one bilinear read and one
+// multiply-add per point; consecutive points mostly fall in one tile, whose
+// lookup is kept from the point before.
+class ScanScorer {
+ public:
+  // Uses every `stride`-th point (coarse levels need fewer points).
+  // `unknown_value`: the share of a cell's unknown mass that counts as
+  // occupancy (see cell_value in grid/sampling.hpp).
+  ScanScorer(const DsGrid& grid, const std::vector<ScanPoint>& points, std::size_t stride = 1,
+             float unknown_value = 0.0f);
+
+  // Weighted mean occupancy under the points placed at `pose`, in [0, 1].
+  double score(const Pose2& pose) const {
+    return unknown_value_ == 0.0f ? sum<false>(pose) : sum<true>(pose);
+  }
+
+  const DsGrid& grid() const { return *grid_; }
+
+ private:
+  template <bool kCountsUnknown>
+  double sum(const Pose2& pose) const;
+
+  const DsGrid* grid_;
+  std::vector<double> x_, y_;  // the points, in cells
+  std::vector<float> w_;       // their weights, normalised to sum 1
+  float unknown_value_;
+};
+
+// Weighted mean occupancy under every `stride`-th point of `points` at `pose`.
 inline double score_pose(const DsGrid& grid, const std::vector<ScanPoint>& points, const Pose2& pose,
                          std::size_t stride = 1, float unknown_value = 0.0f) {
-  const PointTransform to_world(pose);
-  double sum = 0.0, weights = 0.0;
-  for (std::size_t i = 0; i < points.size(); i += stride) {
-    const ScanPoint& p = points[i];
-    const Eigen::Vector2d w = to_world(p.x, p.y);
-    sum += p.weight * interpolated_occupancy(grid, w.x(), w.y(), unknown_value);
-    weights += p.weight;
-  }
-  return weights > 0.0 ? sum / weights : 0.0;
+  return ScanScorer(grid, points, stride, unknown_value).score(pose);
 }
 
 }  // namespace dsswarm
