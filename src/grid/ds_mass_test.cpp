@@ -87,5 +87,19 @@ TEST(EvidenceModel, RejectsOutOfRangeValues) {
   EXPECT_THROW(ev.validate(), ConfigError);
 }
 
+TEST(EvidenceModel, PassedUpdateEqualsTheGeneralUpdateToTheBit) {
+  const EvidenceModel ev;
+  int compared = 0;
+  for (int i = 0; i <= 50; ++i)
+    for (int j = 0; i + j <= 50; ++j) {
+      const DsMass m{0.02f * static_cast<float>(i), 0.02f * static_cast<float>(j)};
+      const DsMass general = ev.update(m, ev.pass()), passed = ev.update_passed(m);
+      EXPECT_EQ(general.occupied, passed.occupied) << i << " " << j;
+      EXPECT_EQ(general.free, passed.free) << i << " " << j;
+      ++compared;
+    }
+  EXPECT_EQ(compared, 1326);
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -28,6 +28,37 @@ void MultiResMap::insert_scan(const Pose2& robot_pose, const Pose2& laser_in_bas
   insert_scan(self, robot_pose, laser_in_base, points);
 }
 
+namespace {
+
+// Updates one level's cell in every map at once, keeping each map's current
+// tile: a beam crosses dozens of cells of one tile before it needs the next,
+// so most cells cost no tile lookup.
+class LevelWriter {
+ public:
+  LevelWriter(std::span<MultiResMap* const> maps, std::size_t level) : cells_(maps.size(), nullptr) {
+    for (MultiResMap* m : maps) grids_.push_back(&m->mutable_level(static_cast<int>(level)));
+  }
+
+  template <class Update>
+  void apply(CellIndex c, Update&& update) {
+    const std::int32_t tx = c.x >> DsGrid::kTileBits, ty = c.y >> DsGrid::kTileBits;
+    if (tx != tile_x_ || ty != tile_y_ || !cells_.front()) {
+      for (std::size_t k = 0; k < grids_.size(); ++k) cells_[k] = grids_[k]->mutable_tile_cells(c);
+      tile_x_ = tx;
+      tile_y_ = ty;
+    }
+    const int i = DsGrid::local_index(c);
+    for (DsMass* cells : cells_) cells[i] = update(cells[i]);
+  }
+
+ private:
+  std::vector<DsGrid*> grids_;
+  std::vector<DsMass*> cells_;  // the current tile's cells, per map
+  std::int32_t tile_x_ = 0, tile_y_ = 0;
+};
+
+}  // namespace
+
 void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& robot_pose, const Pose2& laser_in_base,
                               const std::vector<ScanPoint>& points) {
   if (maps.empty()) return;
@@ -35,13 +66,6 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
   for (MultiResMap* m : maps)
     if (m->config_.resolution != config.resolution || m->levels() != maps.front()->levels())
       throw ConfigError("MultiResMap::insert_scan: the maps differ in resolution or levels");
-  // Applies `update` to cell c of every map's grid at `level`.
-  const auto each = [&maps](std::size_t level, CellIndex c, auto&& update) {
-    for (MultiResMap* m : maps) {
-      DsMass& cell = m->grids_[level].mutable_at(c);
-      cell = update(cell);
-    }
-  };
   const Pose2 laser = robot_pose * laser_in_base;
   const Eigen::Vector2d origin = laser.translation();
   std::vector<Eigen::Vector2d> hits;
@@ -50,9 +74,10 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
   for (const ScanPoint& p : points) hits.push_back(to_world(p.x, p.y));
 
   const EvidenceModel& ev = config.evidence;
-  const DsMass pass = ev.pass(), hit = ev.hit();
+  const DsMass hit = ev.hit();
   for (std::size_t level = 0; level < maps.front()->grids_.size(); ++level) {
     const DsGrid& grid = maps.front()->grids_[level];
+    LevelWriter writer(maps, level);
     // Free evidence first, hits last: a cell that one beam ends in and a
     // neighbouring grazing beam passes through keeps its hit for this scan.
     // Coarse levels take hits only: a 20 cm cell holding a wall is also
@@ -68,7 +93,7 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
         // cell never gets free evidence, whatever the margin.
         const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
         traverse_ray(origin, end, grid.resolution(),
-                     [&](CellIndex c) { each(level, c, [&](const DsMass& m) { return ev.update(m, pass); }); });
+                     [&](CellIndex c) { writer.apply(c, [&ev](const DsMass& m) { return ev.update_passed(m); }); });
       }
     }
     const bool splat = level > 0 || config.splat_fine_hits;
@@ -92,13 +117,13 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
         const CellIndex end = grid.cell_of(hits[i]);
         traverse_ray(hits[i - 1], hits[i], grid.resolution(), [&](CellIndex c) {
           if (c == end) return;
-          each(level, c, [&](const DsMass& m) { return ev.update(m, between_hits); });
+          writer.apply(c, [&](const DsMass& m) { return ev.update(m, between_hits); });
         });
       }
     }
     for (const Eigen::Vector2d& h : hits) {
       if (!splat) {
-        each(level, grid.cell_of(h), [&](const DsMass& m) { return ev.update(m, hit); });
+        writer.apply(grid.cell_of(h), [&](const DsMass& m) { return ev.update(m, hit); });
         continue;
       }
       // Spread the hit over the four nearest cells with bilinear weights. The
@@ -113,7 +138,7 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
       for (int k = 0; k < 4; ++k) {
         if (weights[k] <= 0.0f) continue;
         const DsMass share{hit.occupied * weights[k], 0.0f};
-        each(level, cells[k], [&](const DsMass& m) { return ev.update(m, share); });
+        writer.apply(cells[k], [&](const DsMass& m) { return ev.update(m, share); });
       }
     }
   }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace dsswarm {
 namespace {
 
@@ -74,6 +76,39 @@ TEST(MultiResMap, RejectsBadConfig) {
   MapConfig negative_margin;
   negative_margin.free_margin_cells = -1.0;
   EXPECT_THROW(MultiResMap{negative_margin}, ConfigError);
+}
+
+// Inserting into several maps at once (the current and the previous submap)
+// leaves each exactly as inserting into it alone: beams that cross many
+// tiles, in every direction, on both sides of the origin.
+TEST(MultiResMap, InsertingIntoTwoMapsAtOnceEqualsInsertingIntoEach) {
+  std::vector<ScanPoint> pts;
+  for (int i = 0; i < 360; ++i) {
+    const double a = i * 0.0174533, r = 1.0 + 9.0 * std::abs(std::sin(3.0 * a));
+    pts.push_back({static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), 1.0f});
+  }
+  const std::vector<Pose2> poses{Pose2(0.3, -0.2, 0.1), Pose2(-4.1, 2.7, 2.0), Pose2(1.0, 1.0, -1.2)};
+  MultiResMap alone_a, alone_b, together_a, together_b;
+  alone_b.insert_scan(Pose2(5, 5, 0), Pose2(), pts);  // b starts with a different history
+  together_b.insert_scan(Pose2(5, 5, 0), Pose2(), pts);
+  MultiResMap* both[] = {&together_a, &together_b};
+  for (const Pose2& p : poses) {
+    alone_a.insert_scan(p, Pose2(), pts);
+    alone_b.insert_scan(p, Pose2(), pts);
+    MultiResMap::insert_scan(both, p, Pose2(), pts);
+  }
+  for (int l = 0; l < alone_a.levels(); ++l) {
+    for (const auto& [alone, together] : {std::pair{&alone_a, &together_a}, std::pair{&alone_b, &together_b}}) {
+      const GridRaster x = alone->level(l).to_raster(), y = together->level(l).to_raster();
+      ASSERT_EQ(x.width, y.width);
+      ASSERT_EQ(x.height, y.height);
+      ASSERT_GT(x.cells.size(), 1000u);
+      for (std::size_t i = 0; i < x.cells.size(); ++i) {
+        ASSERT_EQ(x.cells[i].occupied, y.cells[i].occupied) << "level " << l << " cell " << i;
+        ASSERT_EQ(x.cells[i].free, y.cells[i].free) << "level " << l << " cell " << i;
+      }
+    }
+  }
 }
 
 }  // namespace
