@@ -18,7 +18,7 @@
 #                on intel alone takes many minutes).
 #   --callgrind  also count instructions: callgrind on the first 300 scans of
 #                mit-csail (`dsswarm run --max-scans 300 --no-images`), SLAM
-#                only (inside run_slam) and the whole process; instructions per
+#                only (Slam::process and Slam::finish) and the whole process; instructions per
 #                scan, the top functions and a Raspberry Pi estimate go into
 #                compare.md/json. --callgrind-only: that alone, into
 #                callgrind.md/json (compare.md/json are left as they are).
@@ -167,7 +167,9 @@ if [ $callgrind -eq 1 ]; then
   cg_log=mit-csail cg_scans=300
   for part in slam whole; do
     toggle=()
-    [ $part = slam ] && toggle=("--toggle-collect=dsswarm::run_slam(*")
+    # SLAM: every scan's processing and the end of the run (run_slam reaches
+    # them through a tail call, which callgrind does not count as inside it).
+    [ $part = slam ] && toggle=("--toggle-collect=dsswarm::Slam::process(*" "--toggle-collect=dsswarm::Slam::finish(*")
     valgrind --tool=callgrind "${toggle[@]}" --callgrind-out-file="$work/callgrind.$part.out" \
       "$dsswarm" run "$data/carmen/$cg_log.log.gz" --out "$work/out/callgrind-$part" --max-scans $cg_scans \
       --no-images > "$work/out/callgrind-$part.log" 2>&1

@@ -204,7 +204,7 @@ def callgrind_markdown(c):
     lines = [
         f"## Instructions per scan (callgrind, first {c['scans']} scans of {c['log']}, `--no-images`)",
         "",
-        f"SLAM (inside `run_slam`): **{c['slam_ir_per_scan'] / 1e6:.2f} million instructions per scan** "
+        f"SLAM (`Slam::process` and `Slam::finish`): **{c['slam_ir_per_scan'] / 1e6:.2f} million instructions per scan** "
         f"({c['slam_ir']:,} in all); the whole process, reading the whole log included: "
         f"{c['process_ir_per_scan'] / 1e6:.2f} million per scan.",
         "",
