@@ -16,9 +16,11 @@ namespace dsswarm {
 
 // One scan made ready to score many poses against one grid: the matcher's
 // inner loop. The points are kept in the grid's cell units with weights that
-// sum to 1, so a pose costs one rotation, one bilinear read and one
-// multiply-add per point; consecutive points mostly fall in one tile, whose
-// lookup is kept from the point before.
+// sum to 1. A pose is scored in two passes: all points are placed first (a
+// rotation and a floor each, written so the compiler does several per
+// instruction), then each is read bilinearly and weighted; consecutive points
+// mostly fall in one tile, whose lookup is kept from the point before.
+// Not for concurrent use: scoring writes the scorer's scratch arrays.
 class ScanScorer {
  public:
   // Uses every `stride`-th point (coarse levels need fewer points).
@@ -37,11 +39,15 @@ class ScanScorer {
  private:
   template <bool kCountsUnknown>
   double sum(const Pose2& pose) const;
+  // Each point's bilinear block and offsets at `pose`, into the scratch arrays.
+  void place(const Pose2& pose) const;
 
   const DsGrid* grid_;
-  std::vector<double> x_, y_;  // the points, in cells
-  std::vector<float> w_;       // their weights, normalised to sum 1
+  std::vector<float> x_, y_;  // the points, in cells
+  std::vector<float> w_;      // their weights, normalised to sum 1
   float unknown_value_;
+  mutable std::vector<std::int32_t> ix_, iy_;  // scratch for place()
+  mutable std::vector<float> ax_, ay_;
 };
 
 // Weighted mean occupancy under every `stride`-th point of `points` at `pose`.
