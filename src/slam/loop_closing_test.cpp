@@ -51,8 +51,13 @@ TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
   const Trajectory truth = truth_of(sim);
   const double local = evaluate_ate(stamped(sim, slam.local_trajectory()), truth).rmse;
   const double closed = evaluate_ate(stamped(sim, slam.trajectory()), truth).rmse;
-  EXPECT_GT(local, 0.3);
+  // This world's front end drifts 0.25-0.31 m over 1.2-2 laps (0.27 m at
+  // 1.3; just over 0.3 m before the scorer's single precision moved the
+  // search's path). Drifts beyond 0.3 m, closed, over 50 worlds: the
+  // loop-closure bench (docs/loop_closure.md).
+  EXPECT_GT(local, 0.2);
   EXPECT_LT(closed, 0.05);
+  EXPECT_LT(closed, 0.2 * local);
   const auto& closures = slam.loop_closer().closures();
   EXPECT_GT(closures.size(), 10u);
   for (const LoopClosure& c : closures) {
