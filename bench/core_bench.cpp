@@ -9,8 +9,10 @@
 #include "common/rng.hpp"
 #include "filter/scan_histogram.hpp"
 #include "grid/ray_traversal.hpp"
+#include "matching/branch_and_bound_matcher.hpp"
 #include "matching/monte_carlo_matcher.hpp"
 #include "matching/scan_scorer.hpp"
+#include "slam/loop_search.hpp"
 
 namespace dsswarm::bench {
 namespace {
@@ -70,15 +72,15 @@ void BM_InsertScanNewMap(benchmark::State& state) {
 }
 BENCHMARK(BM_InsertScanNewMap);
 
-// One pose evaluation as the matcher makes it (score_pose with the matcher's
-// unknown_value) on level 0 (every point) and level 2 (every 4th point).
+// One pose evaluation as the matcher makes it (a ScanScorer prepared once,
+// the matcher's unknown_value) on level 0 (every point) and level 2 (every
+// 4th point).
 void BM_ScorePose(benchmark::State& state) {
   const Fixture& f = fixture();
   const int level = static_cast<int>(state.range(0));
   const std::size_t stride = std::size_t{1} << level;
-  const float unknown_value = MatcherConfig{}.unknown_value;
-  for (auto _ : state)
-    benchmark::DoNotOptimize(score_pose(f.slam.map().level(level), f.points, f.pose, stride, unknown_value));
+  const ScanScorer scorer(f.slam.map().level(level), f.points, stride, MatcherConfig{}.unknown_value);
+  for (auto _ : state) benchmark::DoNotOptimize(scorer.score(f.pose));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(f.points.size() / stride));
 }
 BENCHMARK(BM_ScorePose)->Arg(0)->Arg(2);
@@ -113,9 +115,43 @@ void BM_FilterCorrelation(benchmark::State& state) {
 }
 BENCHMARK(BM_FilterCorrelation);
 
-// Loop-closure search (src/slam, branch `graph`): its benchmark goes here
-// when that lands, on the same fixture (a candidate scan against the map of
-// the first kMapScans scans), so that it compares with BM_MatchScan.
+// Loop-closure search, on the same fixture so that it compares with
+// BM_MatchScan: the next scan searched in the map of the first kMapScans
+// scans (as one finished submap) from a prior 0.36 m and 3° off, within the
+// window a round gives it. First the branch-and-bound bounds a round builds
+// per target submap, then one whole search (branch and bound, refinement,
+// verification, runner-up search) with the default LoopSearchConfig.
+constexpr SearchWindow kLoopWindow{1.0, 0.15};
+
+void BM_LoopClosureBounds(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const LoopSearchConfig config;
+  for (auto _ : state) {
+    const BranchAndBoundMatcher matcher(f.slam.map().finest(), kLoopWindow.xy, config.max_depth);
+    benchmark::DoNotOptimize(&matcher);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_LoopClosureBounds)->Unit(benchmark::kMillisecond);
+
+void BM_LoopClosureSearch(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const LoopSearchConfig config;
+  Submap submap;
+  submap.finished = true;
+  submap.map = f.slam.map();
+  const BranchAndBoundMatcher matcher(submap.map.finest(), kLoopWindow.xy, config.max_depth);
+  const Pose2 prior = f.pose * Pose2(0.3, -0.2, 0.05);
+  LoopRejection rejection = LoopRejection::no_match;
+  for (auto _ : state) {
+    const LoopSearch r = search_loop_closure(matcher, submap, f.points, prior, kLoopWindow, config, 7);
+    rejection = r.rejection;
+    benchmark::DoNotOptimize(r.candidate.relative);
+  }
+  state.SetLabel(to_string(rejection));  // what the search concluded: "none" is a closure
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_LoopClosureSearch)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace dsswarm::bench
