@@ -59,7 +59,7 @@ void ScanScorer::place(const Pose2& pose) const {
 template <bool kCountsUnknown>
 double ScanScorer::sum(const Pose2& pose) const {
   constexpr int kLast = DsGrid::kTileSize - 1;
-  const auto value = [this](const DsMass& m) {
+  const auto value = [&](const DsMass& m) {
     if constexpr (kCountsUnknown) return cell_value(m, unknown_value_);
     else return m.occupied;
   };
