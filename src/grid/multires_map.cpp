@@ -1,5 +1,6 @@
 #include "grid/multires_map.hpp"
 
+#include <limits>
 #include <string>
 
 #include "common/errors.hpp"
@@ -42,7 +43,7 @@ class LevelWriter {
   template <class Update>
   void apply(CellIndex c, Update&& update) {
     const std::int32_t tx = c.x >> DsGrid::kTileBits, ty = c.y >> DsGrid::kTileBits;
-    if (tx != tile_x_ || ty != tile_y_ || !cells_.front()) {
+    if (tx != tile_x_ || ty != tile_y_) {
       for (std::size_t k = 0; k < grids_.size(); ++k) cells_[k] = grids_[k]->mutable_tile_cells(c);
       tile_x_ = tx;
       tile_y_ = ty;
@@ -54,7 +55,8 @@ class LevelWriter {
  private:
   std::vector<DsGrid*> grids_;
   std::vector<DsMass*> cells_;  // the current tile's cells, per map
-  std::int32_t tile_x_ = 0, tile_y_ = 0;
+  // No tile yet: no cell's tile coordinate is this low.
+  std::int32_t tile_x_ = std::numeric_limits<std::int32_t>::min(), tile_y_ = tile_x_;
 };
 
 }  // namespace

@@ -29,10 +29,12 @@ struct BilinearPoint {
 };
 
 // floor() for values well inside the int32 range (cell indices), without the
-// libm call or the long sequence baseline x86-64 compiles std::floor into.
-inline std::int32_t floor_to_cell(double v) {
+// libm call or the long sequence baseline x86-64 compiles std::floor into
+// (and, in single precision, in a form loops can vectorise).
+template <class Real>
+inline std::int32_t floor_to_cell(Real v) {
   const auto i = static_cast<std::int32_t>(v);  // truncates towards zero
-  return i - static_cast<std::int32_t>(v < static_cast<double>(i));
+  return i - static_cast<std::int32_t>(v < static_cast<Real>(i));
 }
 
 // The bilinear place of a point given in cell units measured from cell

@@ -46,9 +46,7 @@ void ScanScorer::place(const Pose2& pose) const {
   float* ay = ay_.data();
   for (std::size_t i = 0; i < n; ++i) {
     const float gx = fx + c * x[i] - s * y[i], gy = fy + s * x[i] + c * y[i];
-    const auto tx = static_cast<std::int32_t>(gx), ty = static_cast<std::int32_t>(gy);
-    const std::int32_t fx_cell = tx - static_cast<std::int32_t>(gx < static_cast<float>(tx));  // floor
-    const std::int32_t fy_cell = ty - static_cast<std::int32_t>(gy < static_cast<float>(ty));
+    const std::int32_t fx_cell = floor_to_cell(gx), fy_cell = floor_to_cell(gy);
     ax[i] = gx - static_cast<float>(fx_cell);
     ay[i] = gy - static_cast<float>(fy_cell);
     ix[i] = bx + fx_cell;
