@@ -21,6 +21,51 @@ void check_compatible(const MultiResMap& target, const MultiResMap& source) {
                       std::to_string(target.levels()) + ")");
 }
 
+// Whether any of `grid`'s tiles holds a cell in [lo, hi] (inclusive).
+bool any_tile(const DsGrid& grid, CellIndex lo, CellIndex hi) {
+  constexpr int bits = DsGrid::kTileBits;
+  for (std::int32_t ty = lo.y >> bits; ty <= hi.y >> bits; ++ty)
+    for (std::int32_t tx = lo.x >> bits; tx <= hi.x >> bits; ++tx)
+      if (grid.tile_cells({tx * DsGrid::kTileSize, ty * DsGrid::kTileSize})) return true;
+  return false;
+}
+
+// The source cells bilinear reads can touch for the target cells [lo, hi]
+// (their centres placed in the source; a cell of margin against rounding).
+bool source_has_evidence(const DsGrid& source, const PointTransform& to_source, double tr, CellIndex lo, CellIndex hi) {
+  const double inv = 1.0 / source.resolution();
+  double gx_lo = std::numeric_limits<double>::max(), gy_lo = gx_lo, gx_hi = -gx_lo, gy_hi = -gx_lo;
+  for (int corner = 0; corner < 4; ++corner) {
+    const Eigen::Vector2d p =
+        to_source(((corner & 1 ? hi.x : lo.x) + 0.5) * tr, ((corner & 2 ? hi.y : lo.y) + 0.5) * tr) * inv;
+    gx_lo = std::min(gx_lo, p.x() - 0.5);
+    gy_lo = std::min(gy_lo, p.y() - 0.5);
+    gx_hi = std::max(gx_hi, p.x() - 0.5);
+    gy_hi = std::max(gy_hi, p.y() - 0.5);
+  }
+  return any_tile(source, {floor_to_cell(gx_lo) - 1, floor_to_cell(gy_lo) - 1},
+                  {floor_to_cell(gx_hi) + 2, floor_to_cell(gy_hi) + 2});
+}
+
+// Target cells [lo, hi] of one target tile (allocated on the first cell the
+// source knows something about).
+void combine_cells(DsGrid& target, const DsGrid& source, const PointTransform& to_source, CellIndex lo, CellIndex hi,
+                   const EvidenceModel& evidence) {
+  const double tr = target.resolution();
+  DsMass* cells = nullptr;
+  for (std::int32_t y = lo.y; y <= hi.y; ++y) {
+    const double wy = (y + 0.5) * tr;
+    for (std::int32_t x = lo.x; x <= hi.x; ++x) {
+      const Eigen::Vector2d sp = to_source((x + 0.5) * tr, wy);
+      const DsMass m = interpolated_masses(source, sp.x(), sp.y());
+      if (m.occupied + m.free < kNothing) continue;
+      if (!cells) cells = target.mutable_tile_cells(lo);
+      DsMass& cell = cells[DsGrid::local_index({x, y})];
+      cell = evidence.update(cell, m);
+    }
+  }
+}
+
 void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_target, const EvidenceModel& evidence) {
   CellIndex smin, smax;
   source.bounds(smin, smax);
@@ -37,20 +82,17 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
     hi_y = std::max(hi_y, q.y());
   }
   const CellIndex tmin = target.cell_of({lo_x, lo_y}), tmax = target.cell_of({hi_x, hi_y});
-  const Pose2 target_in_source = source_in_target.inverse();
-  const PointTransform to_source(target_in_source);
-  const double tr = target.resolution();
-  for (std::int32_t y = tmin.y; y <= tmax.y; ++y) {
-    const double wy = (y + 0.5) * tr;
-    for (std::int32_t x = tmin.x; x <= tmax.x; ++x) {
-      const double wx = (x + 0.5) * tr;
-      const Eigen::Vector2d sp = to_source(wx, wy);
-      const DsMass m = interpolated_masses(source, sp.x(), sp.y());
-      if (m.occupied + m.free < kNothing) continue;
-      DsMass& cell = target.mutable_at({x, y});
-      cell = evidence.update(cell, m);
+  const PointTransform to_source(source_in_target.inverse());
+  // Tile by tile, skipping those whose place in the source holds no tile: a
+  // rotated submap's box in the target is mostly space it never saw.
+  constexpr int bits = DsGrid::kTileBits, size = DsGrid::kTileSize;
+  for (std::int32_t ty = tmin.y >> bits; ty <= tmax.y >> bits; ++ty)
+    for (std::int32_t tx = tmin.x >> bits; tx <= tmax.x >> bits; ++tx) {
+      const CellIndex lo{std::max(tmin.x, tx * size), std::max(tmin.y, ty * size)};
+      const CellIndex hi{std::min(tmax.x, tx * size + size - 1), std::min(tmax.y, ty * size + size - 1)};
+      if (source_has_evidence(source, to_source, target.resolution(), lo, hi))
+        combine_cells(target, source, to_source, lo, hi, evidence);
     }
-  }
 }
 
 }  // namespace
