@@ -17,7 +17,12 @@ constexpr int kCells = FrozenMap::kBlock * FrozenMap::kBlock;
 constexpr int kZstdLevel = 1;  // fast: a submap is frozen while the robot drives on
 
 std::uint8_t encode(float m) {
-  return static_cast<std::uint8_t>(std::lround(255.0f * std::sqrt(std::clamp(m, 0.0f, 1.0f))));
+  // Rounded half up, as std::lround rounds a value >= 0, without its libm
+  // call (a frozen submap encodes two masses per cell): the integer part
+  // and the fraction of a float below 256 are both exact.
+  const float v = 255.0f * std::sqrt(std::clamp(m, 0.0f, 1.0f));
+  const auto whole = static_cast<int>(v);
+  return static_cast<std::uint8_t>(whole + (v - static_cast<float>(whole) >= 0.5f ? 1 : 0));
 }
 float decode(std::uint8_t q) {
   const float r = static_cast<float>(q) / 255.0f;
