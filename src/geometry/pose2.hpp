@@ -61,6 +61,9 @@ inline Pose2 Pose2::operator*(const Pose2& other) const {
 // Motion from a to b expressed in a's frame: a⁻¹ ⊕ b.
 inline Pose2 between(const Pose2& a, const Pose2& b) { return a.inverse() * b; }
 
+// Exactly the identity (a frame never moved), not merely close to it.
+inline bool is_identity(const Pose2& p) { return p.x == 0.0 && p.y == 0.0 && p.theta == 0.0; }
+
 // Linear interpolation of translation, shortest-arc interpolation of heading; t in [0, 1].
 inline Pose2 interpolate(const Pose2& a, const Pose2& b, double t) {
   return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 namespace dsswarm {
 
@@ -76,6 +77,21 @@ void DsGrid::grow_table_to_include(std::int32_t tx, std::int32_t ty) {
 std::size_t DsGrid::memory_bytes() const {
   return tiles_.size() * sizeof(Tile) + tiles_.capacity() * sizeof(std::unique_ptr<Tile>) +
          table_.capacity() * sizeof(Tile*);
+}
+
+void DsGrid::absorb(DsGrid&& other) {
+  if (other.resolution_ != resolution_) throw std::logic_error("DsGrid::absorb: resolutions differ");
+  for (auto& tile : other.tiles_) {
+    const std::int32_t tx = tile->origin.x >> kTileBits, ty = tile->origin.y >> kTileBits;
+    if (tx < table_origin_.x || ty < table_origin_.y || tx >= table_origin_.x + table_width_ ||
+        ty >= table_origin_.y + table_height_ || table_width_ == 0)
+      grow_table_to_include(tx, ty);
+    Tile*& slot = table_[static_cast<std::size_t>(ty - table_origin_.y) * table_width_ + (tx - table_origin_.x)];
+    if (slot) throw std::logic_error("DsGrid::absorb: a tile is in both grids");
+    slot = tile.get();
+    tiles_.push_back(std::move(tile));
+  }
+  other = DsGrid(resolution_);
 }
 
 void DsGrid::bounds(CellIndex& min, CellIndex& max) const {

@@ -109,6 +109,11 @@ class DsGrid {
   // Heap bytes held by the grid (tiles plus the pointer table), for memory reports.
   std::size_t memory_bytes() const;
 
+  // Takes over `other`'s tiles (same resolution, none where this grid has
+  // one: two halves of one map built apart); `other` is left empty. Throws
+  // std::logic_error when a tile is in both.
+  void absorb(DsGrid&& other);
+
   // Bounding box of allocated tiles, in cells [min, max) — empty grid gives min == max.
   void bounds(CellIndex& min, CellIndex& max) const;
 

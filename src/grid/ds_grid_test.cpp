@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 namespace dsswarm {
 namespace {
 
@@ -94,6 +96,26 @@ TEST(DsGrid, CopyIsDeepAndIndependent) {
   EXPECT_FLOAT_EQ(a.at({1000, 1000}).occupied, 0.0f);
   a = b;
   EXPECT_FLOAT_EQ(a.at({1000, 1000}).occupied, 0.7f);
+}
+
+TEST(DsGrid, AbsorbTakesOverTheOtherGridsTilesAndRefusesOverlap) {
+  DsGrid a(0.1), b(0.1);
+  a.mutable_at({5, 5}) = {0.5f, 0.1f};
+  b.mutable_at({-500, 700}) = {0.2f, 0.3f};  // outside a's table: it grows
+  b.mutable_at({70, 5}) = {0.1f, 0.6f};
+  a.absorb(std::move(b));
+  EXPECT_EQ(a.tiles_allocated(), 3u);
+  EXPECT_EQ(b.tiles_allocated(), 0u);
+  EXPECT_FLOAT_EQ(a.at({5, 5}).occupied, 0.5f);
+  EXPECT_FLOAT_EQ(a.at({-500, 700}).free, 0.3f);
+  EXPECT_FLOAT_EQ(a.at({70, 5}).free, 0.6f);
+  a.mutable_at({-501, 701}).occupied = 0.4f;  // the absorbed tile is a's own now
+  EXPECT_FLOAT_EQ(a.at({-501, 701}).occupied, 0.4f);
+  DsGrid c(0.1);
+  c.mutable_at({6, 6}) = {0.3f, 0.0f};  // the tile of a's (5, 5)
+  EXPECT_THROW(a.absorb(std::move(c)), std::logic_error);
+  DsGrid coarse(0.2);
+  EXPECT_THROW(a.absorb(std::move(coarse)), std::logic_error);
 }
 
 }  // namespace

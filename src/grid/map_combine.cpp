@@ -66,7 +66,8 @@ void combine_cells(DsGrid& target, const DsGrid& source, const PointTransform& t
   }
 }
 
-void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_target, const EvidenceModel& evidence) {
+void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_target, const EvidenceModel& evidence,
+                   const TileBand& band) {
   CellIndex smin, smax;
   source.bounds(smin, smax);
   if (smin == smax) return;
@@ -86,29 +87,35 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
   // Tile by tile, skipping those whose place in the source holds no tile: a
   // rotated submap's box in the target is mostly space it never saw.
   constexpr int bits = DsGrid::kTileBits, size = DsGrid::kTileSize;
-  for (std::int32_t ty = tmin.y >> bits; ty <= tmax.y >> bits; ++ty)
+  const double tile_height = size * target.resolution();
+  for (std::int32_t ty = tmin.y >> bits; ty <= tmax.y >> bits; ++ty) {
+    if (!band.holds(ty, tile_height)) continue;
     for (std::int32_t tx = tmin.x >> bits; tx <= tmax.x >> bits; ++tx) {
       const CellIndex lo{std::max(tmin.x, tx * size), std::max(tmin.y, ty * size)};
       const CellIndex hi{std::min(tmax.x, tx * size + size - 1), std::min(tmax.y, ty * size + size - 1)};
       if (source_has_evidence(source, to_source, target.resolution(), lo, hi))
         combine_cells(target, source, to_source, lo, hi, evidence);
     }
+  }
 }
 
 }  // namespace
 
-void combine_into(MultiResMap& target, const MultiResMap& source, const Pose2& source_in_target) {
+void combine_into(MultiResMap& target, const MultiResMap& source, const Pose2& source_in_target,
+                  const TileBand& band) {
   check_compatible(target, source);
   for (int level = 0; level < target.levels(); ++level)
-    combine_level(target.mutable_level(level), source.level(level), source_in_target, target.config().evidence);
+    combine_level(target.mutable_level(level), source.level(level), source_in_target, target.config().evidence, band);
 }
 
-void combine_aligned(MultiResMap& target, const MultiResMap& source) {
+void combine_aligned(MultiResMap& target, const MultiResMap& source, const TileBand& band) {
   check_compatible(target, source);
   const EvidenceModel& evidence = target.config().evidence;
   for (int level = 0; level < target.levels(); ++level) {
     DsGrid& t = target.mutable_level(level);
+    const double tile_height = DsGrid::kTileSize * t.resolution();
     source.level(level).for_each_tile([&](CellIndex origin, const DsMass* cells) {
+      if (!band.holds(origin.y >> DsGrid::kTileBits, tile_height)) return;
       for (int i = 0; i < DsGrid::kTileCells; ++i) {
         if (cells[i].occupied + cells[i].free < kNothing) continue;
         DsMass& cell = t.mutable_at(DsGrid::tile_cell(origin, i));

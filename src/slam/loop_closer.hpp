@@ -106,6 +106,9 @@ class LoopCloser {
   const std::vector<LoopClosure>& closures() const { return closures_; }
   // Bumped whenever an optimization moved poses (or other robots' frames).
   std::uint64_t version() const { return version_; }
+  // No round handed over and not yet applied (after finish(), say): the
+  // executor has nothing of ours to run.
+  bool idle() const { return in_flight_.empty(); }
   std::size_t nodes() const { return nodes_.size(); }
   TrajectoryNode node(std::size_t i) const;
   std::size_t memory_bytes() const;

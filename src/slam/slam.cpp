@@ -44,7 +44,6 @@ const SlamConfig& validated(const SlamConfig& config) {
   config.validate();
   return config;
 }
-bool is_identity(const Pose2& p) { return p.x == 0.0 && p.y == 0.0 && p.theta == 0.0; }
 }  // namespace
 
 Slam::Slam(const SlamConfig& config, Executor* background)
@@ -56,7 +55,8 @@ Slam::Slam(const SlamConfig& config, Executor* background)
       verifier_(config.verify),
       recovery_(config.matcher, config.seed + 1),
       submaps_(config.map, config.active_submaps(), config.insert),
-      closer_(config.loop_closure, config.map, config.points, config.seed + 2, background) {}
+      closer_(config.loop_closure, config.map, config.points, config.seed + 2, background),
+      background_(background) {}
 
 Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use, Executor* background)
     : Slam(config, background) {
@@ -156,7 +156,10 @@ const MultiResMap& Slam::own_map() const {
     return all.front()->map;
   const std::pair<std::size_t, std::uint64_t> version{submaps_.scans_inserted(), closer_.version()};
   if (!global_ || global_version_ != version) {
-    global_ = combine_submaps(config_.map, all, [this](int id) { return closer_.submap_cells_pose(id); });
+    // Both threads when the background has nothing else to do (at the end of
+    // a run): composing many overlapping submaps is the longest step there.
+    Executor* helper = closer_.idle() ? background_ : nullptr;
+    global_ = combine_submaps(config_.map, all, [this](int id) { return closer_.submap_cells_pose(id); }, helper);
     global_version_ = version;
   }
   return *global_;

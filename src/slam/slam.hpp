@@ -104,7 +104,8 @@ enum class MapUse {
 
 class Slam {
  public:
-  // `background` runs loop closing (not owned; nullptr: on the calling thread).
+  // `background` runs loop closing (not owned; nullptr: on the calling
+  // thread), and half of composing the global map when loop closing is idle.
   explicit Slam(const SlamConfig& config = {}, Executor* background = nullptr);
   // Starts in `initial` (a saved map, or evidence received from other
   // robots): the first scan is matched against it from `start` (a wide
@@ -192,6 +193,7 @@ class Slam {
   GapReviser gaps_;
   Submaps submaps_;
   LoopCloser closer_;
+  Executor* background_;                // not owned; may be null
   std::optional<MultiResMap> working_;  // own ⊕ foreign, once the swarm installed it
   bool has_initial_map_ = false;        // first scan is matched, not founding
   bool localize_only_ = false;

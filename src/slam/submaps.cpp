@@ -1,6 +1,9 @@
 #include "slam/submaps.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
+#include <limits>
 #include <string>
 
 #include "common/errors.hpp"
@@ -117,18 +120,56 @@ std::size_t Submaps::memory_bytes() const {
   return n;
 }
 
-MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Submap*>& submaps,
-                            const std::function<Pose2(int)>& cells_pose) {
-  MultiResMap map(config);
-  for (const Submap* s : submaps) {
-    const Pose2 pose = cells_pose(s->id);
+namespace {
+
+// Combines the submaps into `map`, in order, writing the target tiles of `band` only.
+void combine_band(MultiResMap& map, const MapConfig& config, const std::vector<const Submap*>& submaps,
+                  const std::vector<Pose2>& poses, const TileBand& band) {
+  for (std::size_t i = 0; i < submaps.size(); ++i) {
+    const Submap* s = submaps[i];
     const MultiResMap thawed = s->finished ? s->frozen.thaw(config) : MultiResMap();
     const MultiResMap& cells = s->finished ? thawed : s->map;
-    if (pose.x == 0.0 && pose.y == 0.0 && pose.theta == 0.0)
-      combine_aligned(map, cells);
+    if (is_identity(poses[i]))
+      combine_aligned(map, cells, band);
     else
-      combine_into(map, cells, pose);
+      combine_into(map, cells, poses[i], band);
   }
+}
+
+}  // namespace
+
+MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Submap*>& submaps,
+                            const std::function<Pose2(int)>& cells_pose, Executor* helper) {
+  std::vector<Pose2> poses;
+  for (const Submap* s : submaps) poses.push_back(cells_pose(s->id));
+  MultiResMap map(config);
+  if (!helper || submaps.size() < 2) {
+    combine_band(map, config, submaps, poses, {});
+    return map;
+  }
+  // Split where half the submaps begin: each band then holds about half the work.
+  std::vector<double> starts;
+  for (std::size_t i = 0; i < submaps.size(); ++i) starts.push_back((poses[i] * submaps[i]->anchor).y);
+  std::nth_element(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(starts.size() / 2), starts.end());
+  const double split = starts[starts.size() / 2];
+  MultiResMap upper(config);
+  std::exception_ptr failed;
+  const std::uint64_t ticket = helper->submit([&] {
+    try {
+      combine_band(upper, config, submaps, poses, {split, std::numeric_limits<double>::infinity()});
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  });
+  try {
+    combine_band(map, config, submaps, poses, {-std::numeric_limits<double>::infinity(), split});
+  } catch (...) {
+    helper->wait_for(ticket);  // the job uses this frame's data
+    throw;
+  }
+  helper->wait_for(ticket);
+  if (failed) std::rethrow_exception(failed);
+  for (int level = 0; level < map.levels(); ++level) map.mutable_level(level).absorb(std::move(upper.mutable_level(level)));
   return map;
 }
 

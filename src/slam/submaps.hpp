@@ -22,6 +22,7 @@
 #include "grid/multires_map.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/scan_points.hpp"
+#include "slam/executor.hpp"
 #include <functional>
 
 namespace dsswarm {
@@ -112,8 +113,10 @@ class Submaps {
 };
 
 // Combines `submaps` into one map (Dempster's rule, in the order given),
-// each one's cells placed at cells_pose(id): the global map.
+// each one's cells placed at cells_pose(id): the global map. With `helper`,
+// the map is built in two bands of tiles, one of them as a job on `helper`
+// (then idle: the caller waits for it), the same map to the bit.
 MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Submap*>& submaps,
-                            const std::function<Pose2(int)>& cells_pose);
+                            const std::function<Pose2(int)>& cells_pose, Executor* helper = nullptr);
 
 }  // namespace dsswarm
