@@ -25,7 +25,7 @@ struct LoopClosureConfig {
   double node_rotation = 0.1;          // rad
   int overlap_nodes = 3;
   // Nodes this far apart along the trajectory are searched for loop closures.
-  double search_spacing = 0.5;         // m
+  double search_spacing = 1.0;         // m
   double max_distance = 5.0;           // m: submaps with a node this close to the searched node's estimate
   int max_submaps = 3;                 // searched per node, nearest first
   // The search window grows with the distance travelled since the submap or
@@ -61,7 +61,7 @@ struct LoopClosureConfig {
   // Rounds handed over and not yet applied: a round's result is applied when
   // this many more have been handed over (1: at the next hand-over), so the
   // background has that long to finish before local SLAM has to wait for it.
-  int rounds_in_flight = 2;
+  int rounds_in_flight = 4;
   PoseGraphConfig graph;
 
   void validate() const;  // throws ConfigError naming the field
