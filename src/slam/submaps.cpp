@@ -169,7 +169,8 @@ MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Sub
   }
   helper->wait_for(ticket);
   if (failed) std::rethrow_exception(failed);
-  for (int level = 0; level < map.levels(); ++level) map.mutable_level(level).absorb(std::move(upper.mutable_level(level)));
+  for (int level = 0; level < map.levels(); ++level)
+    map.mutable_level(level).absorb(std::move(upper.mutable_level(level)));
   return map;
 }
 
