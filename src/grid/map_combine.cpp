@@ -30,21 +30,28 @@ bool any_tile(const DsGrid& grid, CellIndex lo, CellIndex hi) {
   return false;
 }
 
+// The bounding box of the rectangle [lo, hi] (metres) moved by `move`.
+struct Box {
+  Eigen::Vector2d lo, hi;
+};
+Box moved_box(const PointTransform& move, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  Box box{Eigen::Vector2d::Constant(std::numeric_limits<double>::max()),
+          Eigen::Vector2d::Constant(std::numeric_limits<double>::lowest())};
+  for (int corner = 0; corner < 4; ++corner) {
+    const Eigen::Vector2d q = move(corner & 1 ? hi.x() : lo.x(), corner & 2 ? hi.y() : lo.y());
+    box.lo = box.lo.cwiseMin(q);
+    box.hi = box.hi.cwiseMax(q);
+  }
+  return box;
+}
+
 // The source cells bilinear reads can touch for the target cells [lo, hi]
 // (their centres placed in the source; a cell of margin against rounding).
 bool source_has_evidence(const DsGrid& source, const PointTransform& to_source, double tr, CellIndex lo, CellIndex hi) {
+  const Box b = moved_box(to_source, {(lo.x + 0.5) * tr, (lo.y + 0.5) * tr}, {(hi.x + 0.5) * tr, (hi.y + 0.5) * tr});
   const double inv = 1.0 / source.resolution();
-  double gx_lo = std::numeric_limits<double>::max(), gy_lo = gx_lo, gx_hi = -gx_lo, gy_hi = -gx_lo;
-  for (int corner = 0; corner < 4; ++corner) {
-    const Eigen::Vector2d p =
-        to_source(((corner & 1 ? hi.x : lo.x) + 0.5) * tr, ((corner & 2 ? hi.y : lo.y) + 0.5) * tr) * inv;
-    gx_lo = std::min(gx_lo, p.x() - 0.5);
-    gy_lo = std::min(gy_lo, p.y() - 0.5);
-    gx_hi = std::max(gx_hi, p.x() - 0.5);
-    gy_hi = std::max(gy_hi, p.y() - 0.5);
-  }
-  return any_tile(source, {floor_to_cell(gx_lo) - 1, floor_to_cell(gy_lo) - 1},
-                  {floor_to_cell(gx_hi) + 2, floor_to_cell(gy_hi) + 2});
+  return any_tile(source, {floor_to_cell(b.lo.x() * inv - 0.5) - 1, floor_to_cell(b.lo.y() * inv - 0.5) - 1},
+                  {floor_to_cell(b.hi.x() * inv - 0.5) + 2, floor_to_cell(b.hi.y() * inv - 0.5) + 2});
 }
 
 // Target cells [lo, hi] of one target tile (allocated on the first cell the
@@ -73,16 +80,8 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
   if (smin == smax) return;
   // The source's extent, placed in the target frame, bounds the cells to visit.
   const double sr = source.resolution();
-  double lo_x = std::numeric_limits<double>::max(), lo_y = lo_x, hi_x = -lo_x, hi_y = -lo_x;
-  for (int corner = 0; corner < 4; ++corner) {
-    const Eigen::Vector2d p((corner & 1 ? smax.x : smin.x) * sr, (corner & 2 ? smax.y : smin.y) * sr);
-    const Eigen::Vector2d q = source_in_target * p;
-    lo_x = std::min(lo_x, q.x());
-    lo_y = std::min(lo_y, q.y());
-    hi_x = std::max(hi_x, q.x());
-    hi_y = std::max(hi_y, q.y());
-  }
-  const CellIndex tmin = target.cell_of({lo_x, lo_y}), tmax = target.cell_of({hi_x, hi_y});
+  const Box placed = moved_box(PointTransform(source_in_target), {smin.x * sr, smin.y * sr}, {smax.x * sr, smax.y * sr});
+  const CellIndex tmin = target.cell_of(placed.lo), tmax = target.cell_of(placed.hi);
   const PointTransform to_source(source_in_target.inverse());
   // Tile by tile, skipping those whose place in the source holds no tile: a
   // rotated submap's box in the target is mostly space it never saw.
