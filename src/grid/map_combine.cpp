@@ -80,7 +80,8 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
   if (smin == smax) return;
   // The source's extent, placed in the target frame, bounds the cells to visit.
   const double sr = source.resolution();
-  const Box placed = moved_box(PointTransform(source_in_target), {smin.x * sr, smin.y * sr}, {smax.x * sr, smax.y * sr});
+  const Box placed =
+      moved_box(PointTransform(source_in_target), {smin.x * sr, smin.y * sr}, {smax.x * sr, smax.y * sr});
   const CellIndex tmin = target.cell_of(placed.lo), tmax = target.cell_of(placed.hi);
   const PointTransform to_source(source_in_target.inverse());
   // Tile by tile, skipping those whose place in the source holds no tile: a
