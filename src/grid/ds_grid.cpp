@@ -28,15 +28,19 @@ DsGrid& DsGrid::operator=(const DsGrid& other) {
   return *this;
 }
 
-DsGrid::Tile& DsGrid::get_or_create_tile(CellIndex c) {
-  const std::int32_t tx = c.x >> kTileBits, ty = c.y >> kTileBits;
+DsGrid::Tile*& DsGrid::slot_of(std::int32_t tx, std::int32_t ty) {
   std::int32_t lx = tx - table_origin_.x, ly = ty - table_origin_.y;
   if (lx < 0 || ly < 0 || lx >= table_width_ || ly >= table_height_) {
     grow_table_to_include(tx, ty);
     lx = tx - table_origin_.x;
     ly = ty - table_origin_.y;
   }
-  Tile*& slot = table_[static_cast<std::size_t>(ly) * table_width_ + lx];
+  return table_[static_cast<std::size_t>(ly) * table_width_ + lx];
+}
+
+DsGrid::Tile& DsGrid::get_or_create_tile(CellIndex c) {
+  const std::int32_t tx = c.x >> kTileBits, ty = c.y >> kTileBits;
+  Tile*& slot = slot_of(tx, ty);
   if (!slot) {
     auto tile = std::make_unique<Tile>();
     tile->origin = {tx << kTileBits, ty << kTileBits};
@@ -82,11 +86,7 @@ std::size_t DsGrid::memory_bytes() const {
 void DsGrid::absorb(DsGrid&& other) {
   if (other.resolution_ != resolution_) throw std::logic_error("DsGrid::absorb: resolutions differ");
   for (auto& tile : other.tiles_) {
-    const std::int32_t tx = tile->origin.x >> kTileBits, ty = tile->origin.y >> kTileBits;
-    if (tx < table_origin_.x || ty < table_origin_.y || tx >= table_origin_.x + table_width_ ||
-        ty >= table_origin_.y + table_height_ || table_width_ == 0)
-      grow_table_to_include(tx, ty);
-    Tile*& slot = table_[static_cast<std::size_t>(ty - table_origin_.y) * table_width_ + (tx - table_origin_.x)];
+    Tile*& slot = slot_of(tile->origin.x >> kTileBits, tile->origin.y >> kTileBits);
     if (slot) throw std::logic_error("DsGrid::absorb: a tile is in both grids");
     slot = tile.get();
     tiles_.push_back(std::move(tile));

@@ -147,6 +147,8 @@ class DsGrid {
     return table_[static_cast<std::size_t>(ty) * table_width_ + tx];
   }
   Tile& get_or_create_tile(CellIndex c);
+  // The table's slot for tile (tx, ty), the table grown to hold it if need be.
+  Tile*& slot_of(std::int32_t tx, std::int32_t ty);
   void grow_table_to_include(std::int32_t tx, std::int32_t ty);
 
   double resolution_;
