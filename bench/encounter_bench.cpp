@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
              a.levels(), static_cast<double>(a.memory_bytes()) / 1e6);
 
   // The exchange: B's snapshot as bytes on the wire, and back.
-  const MapSnapshot snapshot{"b", {MapLayer{"b", 1, Pose2{}, 0, std::make_shared<const MultiResMap>(b)}}};
+  const MapSnapshot snapshot{"b", {MapLayer{"b", 1, Pose2{}, 0, std::make_shared<const MultiResMap>(b), {}}}};
   t0 = Clock::now();
   const std::vector<std::uint8_t> wire = encode_dsmap(snapshot);
   const double encode_ms = ms_since(t0);

@@ -18,7 +18,7 @@ const Pose2 kOtherFrame{0.37, -0.21, 0.4};
 
 MapSnapshot snapshot() {
   const Fixture& f = fixture();
-  return {"b", {MapLayer{"b", kMapScans, Pose2(), 0, std::make_shared<const MultiResMap>(f.slam.map())}}};
+  return {"b", {MapLayer{"b", kMapScans, Pose2(), 0, std::make_shared<const MultiResMap>(f.slam.map()), {}}}};
 }
 
 void BM_DsmapEncode(benchmark::State& state) {
@@ -55,7 +55,7 @@ BENCHMARK(BM_CombineInto)->Unit(benchmark::kMillisecond);
 void BM_ComposeWorkingMap(benchmark::State& state) {
   const MultiResMap& own = fixture().slam.map();
   const std::vector<MapLayer> foreign{
-      MapLayer{"b", kMapScans, kOtherFrame, 1, std::make_shared<const MultiResMap>(own)}};
+      MapLayer{"b", kMapScans, kOtherFrame, 1, std::make_shared<const MultiResMap>(own), {}}};
   for (auto _ : state) benchmark::DoNotOptimize(compose_working_map(own, foreign));
   state.SetItemsProcessed(state.iterations());
 }

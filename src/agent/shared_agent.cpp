@@ -72,7 +72,8 @@ SharedAgent::Staged SharedAgent::capture_locked() const {
   const MultiResMap& own = agent_->slam().own_map();
   auto map = std::make_shared<const MultiResMap>(working);
   Staged s{{agent_->view(locate_), agent_->last_scan()->timestamp, map,
-            &working == &own ? map : std::make_shared<const MultiResMap>(own), agent_->own_version()},
+            &working == &own ? map : std::make_shared<const MultiResMap>(own), agent_->own_version(),
+            agent_->loop_closing() ? std::make_shared<const MapLayer>(agent_->own_layer()) : nullptr},
            &working == &own ? std::vector<LayerVersion>{} : installed_};
   s.view.view.map = map.get();
   return s;
@@ -122,6 +123,7 @@ MapSnapshot SharedAgent::snapshot(const protocol::CapturedView& at) {
   std::lock_guard lock(mutex_);
   // As at the view's scan, as in one process: what the peer receives does not
   // depend on how long the exchange took.
+  if (at.own_layer) return agent_->knowledge().snapshot(*at.own_layer);
   if (at.own) return agent_->knowledge().snapshot(at.own, at.own_version);
   return agent_->snapshot();
 }
@@ -137,8 +139,10 @@ std::optional<Pose2> SharedAgent::known_frame(const std::string& origin) const {
   return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
 }
 
-void SharedAgent::merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) {
+void SharedAgent::merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
+                        std::uint64_t encounter) {
   std::lock_guard lock(mutex_);
+  agent_->tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self);
   if (!agent_->absorb(snapshot, sender_in_self)) return;
   std::vector<std::uint64_t> encounters{encounter};
   if (job_) {  // not started yet: the new job holds everything it would have

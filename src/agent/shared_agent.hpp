@@ -40,7 +40,8 @@ class SharedAgent : public protocol::AgentPort {
   MapSnapshot snapshot(const protocol::CapturedView& at) override;
   std::vector<LayerVersion> inventory() const override;
   std::optional<Pose2> known_frame(const std::string& origin) const override;
-  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) override;
+  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
+             std::uint64_t encounter) override;
 
   // Reads under the lock.
   template <class F>

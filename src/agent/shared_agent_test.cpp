@@ -52,7 +52,7 @@ TEST(SharedAgent, AViewTakenBeforeAMergeIsBroughtUpToTheKnowledgeWhenItsEncounte
 
   a.stage_view("c", 2);
   const Pose2 b_in_a = kStartA.inverse() * kStartB;
-  a.merge(b->snapshot(), b_in_a, 7);  // an earlier encounter's merge; nothing installed
+  a.merge(b->snapshot(), b_in_a, protocol::CapturedView{}, 7);  // an earlier encounter's merge; nothing installed
   const std::optional<protocol::CapturedView> v = a.capture_view("c", 2);
   ASSERT_TRUE(v);
   const MultiResMap want = compose_working_map(own, a.with_agent([](const SwarmAgent& x) { return x.knowledge().layers(); }));

@@ -41,7 +41,7 @@ SwarmAgentResult agent_result(const fs::path& dir, const std::string& name, cons
   std::vector<MapLayer> foreign;
   for (const MapLayer& l : c.snapshot.layers) {
     if (l.origin == name)
-      a.own_map = l.map;
+      a.own_map = l.pieces.empty() ? l.map : std::make_shared<const MultiResMap>(layer_evidence(l));
     else
       foreign.push_back(l);
   }

@@ -1,5 +1,6 @@
 #include "apps/slam_runner.hpp"
 
+
 #include <fmt/core.h>
 #include <sys/resource.h>
 
@@ -13,6 +14,7 @@
 #include "io/maps/dsmap.hpp"
 #include "io/maps/map_server.hpp"
 #include "io/maps/render.hpp"
+#include "swarm/map_merge.hpp"
 
 namespace dsswarm {
 
@@ -166,7 +168,7 @@ MapSnapshot own_map_snapshot(const Slam& slam, const std::string& sender, std::u
   MapSnapshot snapshot;
   snapshot.sender = sender;
   snapshot.layers.push_back({sender, previous_version + slam.scans_inserted(), Pose2(), 0,
-                             std::make_shared<const MultiResMap>(slam.own_map())});
+                             std::make_shared<const MultiResMap>(slam.own_map()), {}});
   return snapshot;
 }
 
@@ -195,7 +197,8 @@ ContinuedMap load_map_to_continue(const std::string& path, SlamConfig& config) {
   // (how scans are inserted) stay the configuration's.
   config.map.evidence = file.evidence;
   result.map = MultiResMap(config.map);
-  for (int l = 0; l < result.map.levels(); ++l) result.map.mutable_level(l) = layer.map->level(l);
+  const MultiResMap evidence = layer_evidence(layer);  // submap pieces (a robot's checkpoint) in one map
+  for (int l = 0; l < result.map.levels(); ++l) result.map.mutable_level(l) = evidence.level(l);
   const GridRaster extent = result.map.finest().to_raster();
   result.description = fmt::format(
       "layer 0 of {} ('{}', version {}), {} levels, {} m cells, {} cells allocated, {:.1f} m x {:.1f} m",

@@ -101,7 +101,7 @@ TEST(SlamRunner, SavedMapIsLoadedAndUsedByASecondRun) {
 TEST(SlamRunner, LoadedMapMustMatchTheConfiguredGrid) {
   const fs::path file = test::fresh_dir("runner_dsmap_mismatch") / "coarse.dsmap";
   MapSnapshot s;
-  s.layers.push_back({"robot", 1, Pose2(), 0, std::make_shared<MultiResMap>(MapConfig{0.1, 2, {}, false, false})});
+  s.layers.push_back({"robot", 1, Pose2(), 0, std::make_shared<MultiResMap>(MapConfig{0.1, 2, {}, false, false}), {}});
   s.layers.push_back(s.layers.front());
   write_dsmap(file.string(), s);
   SlamConfig config;  // 0.05 m, 3 levels

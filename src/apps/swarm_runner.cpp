@@ -172,7 +172,9 @@ SwarmRunResult run_result(const SwarmSession& s) {
     r.counters = {{"scans_matched", a.slam().scans_matched()},
                   {"scans_held", a.slam().scans_held()},
                   {"matches_rejected", a.slam().matches_rejected()},
-                  {"recovery_searches", a.slam().recoveries()}};
+                  {"recovery_searches", a.slam().recoveries()},
+                  {"loop_closures", a.slam().loop_closer().stats().accepted},
+                  {"loop_closures_into_others_maps", a.slam().loop_closer().stats().foreign_accepted}};
     run.agents.push_back(std::move(r));
   }
   return run;

@@ -9,7 +9,10 @@
 // with those masses.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include "geometry/pose2.hpp"
 
 #include "grid/multires_map.hpp"
 
@@ -39,6 +42,14 @@ class FrozenMap {
   MultiResMap thaw(const MapConfig& config, const CellIndex* region_min, const CellIndex* region_max) const;
 
   std::vector<Level> levels_;
+};
+
+// A finished submap where its cells lie in some robot's map frame: a piece
+// of that robot's map, as its snapshots carry it and others hold it.
+struct MapPiece {
+  int id = 0;                            // the submap's id on the robot that made it
+  Pose2 pose;                            // where its cells lie in that robot's frame
+  std::shared_ptr<const FrozenMap> map;  // its evidence (finished: never changes)
 };
 
 }  // namespace dsswarm

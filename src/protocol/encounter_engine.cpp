@@ -362,17 +362,16 @@ void EncounterEngine::absorb_transfer(Exchange& x, double now) {
     finish(key, EncounterOutcome::End::abandoned, std::string("bad snapshot: ") + e.what(), now);
     return;
   }
-  if (!snapshot.layers.empty()) {
-    if (snapshot.sender != x.peer) {
-      finish(key, EncounterOutcome::End::abandoned, "snapshot from " + x.peer + " names sender " + snapshot.sender, now);
-      return;
-    }
-    const Pose2 t = x.outcome.estimate.b_frame_in_a;
-    const auto t0 = std::chrono::steady_clock::now();
-    x.outcome.layers_received = snapshot.layers.size();
-    port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.id);
-    x.outcome.merge_ms = ms_since(t0);
+  if (!snapshot.layers.empty() && snapshot.sender != x.peer) {
+    finish(key, EncounterOutcome::End::abandoned, "snapshot from " + x.peer + " names sender " + snapshot.sender, now);
+    return;
   }
+  snapshot.sender = x.peer;  // also when it sent nothing
+  const Pose2 t = x.outcome.estimate.b_frame_in_a;
+  const auto t0 = std::chrono::steady_clock::now();
+  x.outcome.layers_received = snapshot.layers.size();
+  port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.mine, x.id);
+  x.outcome.merge_ms = ms_since(t0);
   peers_[x.peer].last_merge = x.outcome.started;  // from the event, as robots that finish at different moments agree
   finish(key, EncounterOutcome::End::accepted, "", now);
 }

@@ -39,6 +39,8 @@ struct CapturedView {
   // mapping meanwhile (a robot process): what the snapshot sends of it.
   std::shared_ptr<const MultiResMap> own;
   std::uint64_t own_version = 0;
+  // With loop closure on, that own map as the snapshot sends it (pieces apart).
+  std::shared_ptr<const MapLayer> own_layer;
 };
 
 // What the engine needs of its robot.
@@ -52,8 +54,13 @@ class AgentPort {
   virtual std::vector<LayerVersion> inventory() const = 0;  // what snapshot() would hold, without copying
   // The pose of `origin`'s map frame in this robot's frame, if it holds that robot's map.
   virtual std::optional<Pose2> known_frame(const std::string& origin) const = 0;
-  // Takes in the peer's layers (the sender's frame at `sender_in_self`) from encounter `encounter`.
-  virtual void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t encounter) = 0;
+  // Takes in the peer's layers (the sender's frame at `sender_in_self`) from
+  // encounter `encounter`, whose view of this robot was `at`. Called for
+  // every accepted encounter (snapshot.sender: the peer), with no layers
+  // when the peer had nothing new:
+  // the encounter itself ties the two frames (SwarmAgent::tie).
+  virtual void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const CapturedView& at,
+                     std::uint64_t encounter) = 0;
 };
 
 struct EncounterOutcome {

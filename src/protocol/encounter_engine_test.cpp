@@ -31,7 +31,7 @@ class FakeRobot : public AgentPort {
   }
   std::optional<CapturedView> capture_view(const std::string&, std::uint64_t encounter) override {
     captured.push_back({encounter, merges});
-    return CapturedView{view, 100.0, nullptr, nullptr, 0};
+    return CapturedView{view, 100.0, nullptr, nullptr, 0, nullptr};
   }
   MapSnapshot snapshot(const CapturedView&) override { return knowledge.snapshot(own, 11); }
   std::vector<LayerVersion> inventory() const override {
@@ -43,7 +43,8 @@ class FakeRobot : public AgentPort {
     const MapLayer* l = knowledge.find(origin);
     return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
   }
-  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
+  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView&, std::uint64_t) override {
+    if (snapshot.layers.empty()) return;  // the peer had nothing new
     ++merges;
     last_transform = sender_in_self;
     knowledge.absorb(snapshot, sender_in_self);
@@ -128,7 +129,7 @@ TEST(EncounterEngine, BothRobotsAcceptTheSameTransformAndMergeWhatTheOtherLacks)
   ASSERT_EQ(again[0].end, End::accepted) << again[0].reason;
   EXPECT_EQ(again[0].layers_received, 0u);
   // The first time b's whole map crossed; this time not a byte of it.
-  const std::size_t b_map_bytes = encode_dsmap(MapSnapshot{"b", {MapLayer{"b", 11, {}, 0, p.b.own}}}).size();
+  const std::size_t b_map_bytes = encode_dsmap(MapSnapshot{"b", {MapLayer{"b", 11, {}, 0, p.b.own, {}}}}).size();
   EXPECT_EQ(oa[0].snapshot_bytes_received, b_map_bytes);
   EXPECT_EQ(again[0].snapshot_bytes_received, 0u);
   EXPECT_LT(again[0].bytes_received, oa[0].bytes_received - b_map_bytes + 100);

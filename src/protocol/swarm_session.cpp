@@ -36,7 +36,7 @@ struct SwarmSession::Robot {
 
     std::optional<protocol::CapturedView> capture_view(const std::string&, std::uint64_t) override {
       if (!agent_.last_scan()) return std::nullopt;
-      return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr, nullptr, 0};
+      return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr, nullptr, 0, nullptr};
     }
     MapSnapshot snapshot(const protocol::CapturedView&) override { return agent_.snapshot(); }  // nothing moved on
     std::vector<LayerVersion> inventory() const override { return agent_.inventory(); }
@@ -44,7 +44,9 @@ struct SwarmSession::Robot {
       const MapLayer* l = agent_.knowledge().find(origin);
       return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
     }
-    void merge(MapSnapshot snapshot, const Pose2& sender_in_self, std::uint64_t) override {
+    void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
+               std::uint64_t) override {
+      agent_.tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self);
       agent_.merge(snapshot, sender_in_self);
     }
 

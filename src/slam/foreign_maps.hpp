@@ -23,11 +23,7 @@
 namespace dsswarm {
 
 // One submap of another robot's map.
-struct ForeignPiece {
-  int id = 0;                            // that robot's submap id
-  Pose2 pose;                            // where its cells lie in that robot's frame
-  std::shared_ptr<const FrozenMap> map;  // its evidence (finished: never changes)
-};
+using ForeignPiece = MapPiece;
 
 // A piece as the loop-closure search sees it.
 struct ForeignPieceInfo {

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "eval/ate.hpp"
-#include "sim/loop_world.hpp"
+#include "sim/test_laps.hpp"
 #include "slam/slam.hpp"
 
 namespace dsswarm {
@@ -14,25 +14,8 @@ namespace {
 
 constexpr int kFrame = 7;  // the caller's id for robot B
 
-// A lap of the corridor ring (8 m lidar): from the middle of a long side,
-// or from corner `corner` (1-3) round to the same corner.
-SimulatedRun lap(int corner, std::uint64_t seed) {
-  LoopWorldConfig config;
-  config.laps = 2.0;
-  const LoopWorld w = make_loop_world(config);
-  LidarConfig lidar;
-  lidar.range_max = 8.0;
-  lidar.noise_std = 0.02;
-  if (corner == 0) {
-    const std::vector<Eigen::Vector2d> tour(w.tour.begin(), w.tour.begin() + 5);
-    return simulate_run(w.world, tour, w.start, RobotConfig{}, lidar, seed);
-  }
-  const std::vector<Eigen::Vector2d> tour(w.tour.begin() + corner - 1, w.tour.begin() + corner + 4);
-  return simulate_run(w.world, tour, tour_start_pose(tour), RobotConfig{}, lidar, seed);
-}
-
 struct Robots {
-  SimulatedRun a = lap(0, 1), b = lap(2, 2);
+  SimulatedRun a = test::lap(0, 1), b = test::lap(2, 2);
   // Each map's frame is where its robot started (odometry starts at identity).
   Pose2 b_in_a = between(a.ground_truth.front().second, b.ground_truth.front().second);
 };

@@ -172,6 +172,13 @@ std::vector<ForeignPiece> Slam::finished_pieces() const {
   return out;
 }
 
+MultiResMap Slam::unfinished_map() const {
+  std::vector<const Submap*> growing;
+  for (const Submap* s : submaps_.all())
+    if (!s->finished) growing.push_back(s);
+  return combine_submaps(config_.map, growing, [this](int id) { return closer_.submap_cells_pose(id); });
+}
+
 void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step) {
   const MultiResMap& map = matching_map();
   const MatchResult m = recovery_.locate(map, points, step.prior);

@@ -145,6 +145,9 @@ class Slam {
   // This robot's finished submaps as another robot holds them: each one's
   // evidence (shared, not copied) where its cells lie in our global frame.
   std::vector<ForeignPiece> finished_pieces() const;
+  // The evidence of the submaps not finished yet, at their global poses:
+  // with finished_pieces(), all of own_map().
+  MultiResMap unfinished_map() const;
 
   // Other robots' maps in this robot's pose graph (with loop closure on;
   // slam/foreign_maps.hpp). `frame` is the caller's id for the other robot.

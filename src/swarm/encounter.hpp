@@ -51,6 +51,7 @@ struct EncounterView {
   std::vector<ScanPoint> surroundings;
   // The same out to merge_surroundings_radius, for the final transform.
   std::vector<ScanPoint> wide_surroundings;
+  std::size_t scan_index = 0;  // the scan's position in the robot's process() order
 };
 
 struct EncounterEstimate {

@@ -49,11 +49,19 @@ const MapLayer* MapKnowledge::find(const std::string& origin) const {
 }
 
 MapSnapshot MapKnowledge::snapshot(std::shared_ptr<const MultiResMap> own_map, std::uint64_t own_version) const {
+  return snapshot(MapLayer{self_, own_version, Pose2{}, 0, std::move(own_map), {}});
+}
+
+MapSnapshot MapKnowledge::snapshot(MapLayer own) const {
   MapSnapshot s;
   s.sender = self_;
-  s.layers.push_back(MapLayer{self_, own_version, Pose2{}, 0, std::move(own_map)});
+  s.layers.push_back(std::move(own));
   for (const auto& [origin, layer] : layers_) s.layers.push_back(layer);
   return s;
+}
+
+void MapKnowledge::place(const std::string& origin, const Pose2& origin_in_holder) {
+  if (auto it = layers_.find(origin); it != layers_.end()) it->second.origin_in_holder = origin_in_holder;
 }
 
 }  // namespace dsswarm

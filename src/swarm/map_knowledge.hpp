@@ -40,6 +40,11 @@ class MapKnowledge {
 
   // What this robot sends: its own map as layer 0, then everything it knows.
   MapSnapshot snapshot(std::shared_ptr<const MultiResMap> own_map, std::uint64_t own_version) const;
+  MapSnapshot snapshot(MapLayer own) const;
+
+  // Moves `origin`'s map frame to `origin_in_holder` (as this robot's pose
+  // graph placed it); nothing if no layer of it is held.
+  void place(const std::string& origin, const Pose2& origin_in_holder);
 
  private:
   std::string self_;

@@ -59,7 +59,7 @@ TEST(MapMerge, ComposeIgnoresTheOrderLayersArriveIn) {
   Rng rng(5);
   const MultiResMap own = test::map_from(world, {{2.0, 1.5, 0.0}}, Pose2{}, rng);
   auto layer = [&](const char* origin, const Pose2& frame, const Pose2& at) {
-    return MapLayer{origin, 10, frame, 1, std::make_shared<const MultiResMap>(test::map_from(world, {at}, frame, rng))};
+    return MapLayer{origin, 10, frame, 1, std::make_shared<const MultiResMap>(test::map_from(world, {at}, frame, rng)), {}};
   };
   const MapLayer b = layer("b", {5.0, 1.0, 0.3}, {6.0, 2.0, 0.0});
   const MapLayer c = layer("c", {2.0, 7.0, -1.2}, {2.0, 6.0, 1.0});

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/pose2.hpp"
+#include "grid/frozen_map.hpp"
 #include "grid/multires_map.hpp"
 
 namespace dsswarm {
@@ -25,6 +26,11 @@ struct MapLayer {
   int hops = 0;                // 0: the holder's own map; 1: received from the origin; 2+: second-hand
   // Immutable once taken, so snapshots and agents share it without copying.
   std::shared_ptr<const MultiResMap> map;
+  // A robot with loop closure on sends its finished submaps apart, each at
+  // its optimized pose in the origin's frame; then `map` holds only the rest
+  // (the growing submap), and the layer's evidence is map ⊕ pieces. A holder
+  // thus places the pieces where the origin's later loop closures put them.
+  std::vector<MapPiece> pieces;
 };
 
 // One layer a robot holds, without its map: whose evidence, and how new

@@ -53,9 +53,9 @@ TwoRobots meet(const World& world, const Pose2& a_start, const Pose2& b_start, c
   };
   t.map_a = test::map_from(world, drive(a_start, a_world), a_start, rng);
   t.map_b = test::map_from(world, drive(b_start, b_world), b_start, rng);
-  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world, {}, {}};
+  t.a = {&t.map_a, test::scan_at(world, a_world, rng), a_start.inverse() * a_world, {}, {}, 0};
   t.a.surroundings = surroundings_points(t.map_a, t.a.pose, 8.0, 2000);
-  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world, {}, {}};
+  t.b = {&t.map_b, test::scan_at(world, b_world, rng), b_start.inverse() * b_world, {}, {}, 0};
   t.b.surroundings = surroundings_points(t.map_b, t.b.pose, 8.0, 2000);
   t.a.wide_surroundings = surroundings_points(t.map_a, t.a.pose, 40.0, 8000);
   t.b.wide_surroundings = surroundings_points(t.map_b, t.b.pose, 40.0, 8000);

@@ -33,11 +33,12 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, Executor* bac
 SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose,
                        Executor* background)
     : name_(std::move(name)),
-      slam_(config, own_layer_of(saved, name_).map ? MultiResMap(*own_layer_of(saved, name_).map) : MultiResMap(config.map), pose,
+      slam_(config, own_layer_of(saved, name_).map ? layer_evidence(own_layer_of(saved, name_)) : MultiResMap(config.map), pose,
             MapUse::extend, background),
       knowledge_(name_),
       version_base_(own_layer_of(saved, name_).version) {
   knowledge_.restore(saved);
+  register_layers();
   if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
 }
 
@@ -48,13 +49,41 @@ SlamStep SwarmAgent::process(const LaserScan& scan) {
   if (jobs_out_ > 0 && own_version() != before)
     inserted_since_job_.push_back(
         {own_version(), step.pose, scan.laser_offset, scan_to_points(scan, slam_.config().points)});
+  sync_frames();
   return step;
+}
+
+void SwarmAgent::finish() {
+  slam_.finish();
+  if (!loop_closing() || knowledge_.size() == 0) return;
+  sync_frames();
+  slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+}
+
+int SwarmAgent::frame_id(const std::string& origin) {
+  return frame_ids_.try_emplace(origin, static_cast<int>(frame_ids_.size())).first->second;
+}
+
+void SwarmAgent::register_layers() {
+  if (!loop_closing()) return;
+  for (const MapLayer& l : knowledge_.layers()) slam_.set_foreign_map(frame_id(l.origin), l.origin_in_holder, l.pieces);
+}
+
+void SwarmAgent::sync_frames() {
+  for (const auto& [origin, id] : frame_ids_)
+    if (const std::optional<Pose2> p = slam_.foreign_frame(id)) knowledge_.place(origin, *p);
+}
+
+void SwarmAgent::tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self) {
+  if (!loop_closing()) return;
+  slam_.add_encounter(frame_id(peer), scan_index, scan_pose, peer_in_self);
 }
 
 EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   EncounterView v;
   v.map = &slam_.map();
   v.pose = slam_.pose();
+  v.scan_index = slam_.scans_processed() - 1;
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
   v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
                                         config.surroundings_points);
@@ -72,9 +101,15 @@ const MultiResMap& SwarmAgent::own_copy() const {
   return *own_copy_;
 }
 
-MapSnapshot SwarmAgent::snapshot() const {
-  own_copy();
-  return knowledge_.snapshot(own_copy_, own_copy_version_);
+MapSnapshot SwarmAgent::snapshot() const { return knowledge_.snapshot(own_layer()); }
+
+MapLayer SwarmAgent::own_layer() const {
+  if (!loop_closing()) {
+    own_copy();
+    return MapLayer{name_, own_copy_version_, Pose2{}, 0, own_copy_, {}};
+  }
+  return MapLayer{name_, own_version(), Pose2{}, 0, std::make_shared<const MultiResMap>(slam_.unfinished_map()),
+                  slam_.finished_pieces()};
 }
 
 std::vector<LayerVersion> SwarmAgent::inventory() const {
@@ -84,13 +119,16 @@ std::vector<LayerVersion> SwarmAgent::inventory() const {
 }
 
 bool SwarmAgent::merge(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
-  if (!knowledge_.absorb(snapshot, sender_in_self)) return false;
+  if (!absorb(snapshot, sender_in_self)) return false;
   slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
   return true;
 }
 
 bool SwarmAgent::absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
-  return knowledge_.absorb(snapshot, sender_in_self);
+  if (!knowledge_.absorb(snapshot, sender_in_self)) return false;
+  register_layers();
+  sync_frames();  // frames our graph already places keep their place
+  return true;
 }
 
 SwarmAgent::ComposeJob SwarmAgent::compose_job() const {

@@ -5,6 +5,7 @@
 // current scan, and merges what the other offers once the encounter is
 // verified (encounter.hpp). Alone, or if every encounter fails, it is just a
 // single robot doing SLAM.
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,12 +34,25 @@ class SwarmAgent {
   SlamStep process(const LaserScan& scan);
   // Waits for loop closing and runs its last round: the trajectory and the
   // own map then reflect every scan (Slam::finish). Processing may go on after.
-  void finish() { slam_.finish(); }
+  // With loop closure on, the merged map is then composed again at the
+  // other robots' frames as the last round placed them.
+  void finish();
 
   // What this robot puts on the table at an encounter.
   // Working map, current scan, pose and surroundings (as `config` asks).
   EncounterView view(const RelativePoseConfig& config) const;
   MapSnapshot snapshot() const;      // own map (layer 0) + everything known of others
+  // Layer 0 of snapshot(). With loop closure on, the finished submaps go as
+  // pieces at their optimized poses, so that holders follow its closures.
+  MapLayer own_layer() const;
+
+  // An accepted encounter with `peer`, whose map frame lies at
+  // `peer_in_self` in ours, found at our scan `scan_index` (pose `scan_pose`):
+  // with loop closure on, a constraint between that scan and the peer's
+  // frame in this robot's pose graph (slam/foreign_maps.hpp). From then on
+  // the graph places that frame, and knowledge() and the merged map follow.
+  void tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self);
+  bool loop_closing() const { return slam_.config().loop_closure.enabled; }
 
   // Takes in another robot's snapshot, whose sender's frame has pose
   // `sender_in_self` here, and rebuilds the working map if anything is new.
@@ -73,9 +87,16 @@ class SwarmAgent {
   const MapKnowledge& knowledge() const { return knowledge_; }
 
  private:
+  // Other robots' maps in our pose graph (loop closure on): every layer's
+  // pieces are searched for closures; the layers' frames follow the graph.
+  int frame_id(const std::string& origin);
+  void register_layers();
+  void sync_frames();
+
   std::string name_;
   Slam slam_;
   MapKnowledge knowledge_;
+  std::map<std::string, int> frame_ids_;  // origin -> frame id in our graph
   std::optional<LaserScan> last_scan_;
   std::size_t version_base_ = 0;  // own map version when this run began (resumed)
   // Scans inserted while a compose job is out (see install).

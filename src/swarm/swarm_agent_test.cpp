@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
+#include "sim/test_laps.hpp"
 #include "swarm/map_merge.hpp"
 #include "swarm/test_scenes.hpp"
 
@@ -56,6 +59,57 @@ TEST(SwarmAgent, ComposingOffTheScanPathLosesNoScanAndCountsNoneTwice) {
     EXPECT_EQ(largest_difference(expected.level(level), a.slam().map().level(level)), 0.0) << "level " << level;
   // b's evidence is in the working map, not in the own map a shares.
   EXPECT_GT(largest_difference(a.slam().map().finest(), a.slam().own_map().finest()), 0.1);
+}
+
+// With loop closure on, an encounter is a constraint between the scan it was
+// found at and the other robot's map frame in this robot's own pose graph,
+// and the other robot's finished submaps (sent apart in its snapshot) are
+// searched for closures like its own: a transform found a degree off at the
+// encounter ends up where the two maps overlap all along the ring, and the
+// merged map places the other robot's map there.
+TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOtherMapStraighten) {
+  const SimulatedRun ra = test::lap(0, 1), rb = test::lap(2, 2);
+  const Pose2 start_a = ra.ground_truth.front().second;
+  const Pose2 b_in_a = between(start_a, rb.ground_truth.front().second);  // each frame is where its robot started
+  SwarmAgent b("b", with_loop_closure());
+  for (const LaserScan& s : rb.log.scans) b.process(s);
+  b.finish();
+  const MapSnapshot sent = b.snapshot();
+  ASSERT_GT(sent.layers.front().pieces.size(), 4u);  // its finished submaps, apart
+
+  SwarmAgent a("a", with_loop_closure());
+  constexpr std::size_t meet = 60;
+  Pose2 seen;
+  for (std::size_t i = 0; i < ra.log.scans.size(); ++i) {
+    const SlamStep step = a.process(ra.log.scans[i]);
+    if (i != meet) continue;
+    // What the encounter found: B's frame turned by a degree about where A stands.
+    const Pose2 here = between(start_a, ra.ground_truth[i].second);
+    seen = here * Pose2(0.0, 0.0, std::numbers::pi / 180.0) * between(here, b_in_a);
+    a.tie("b", meet, step.pose, seen);
+    ASSERT_TRUE(a.merge(sent, seen));
+  }
+  a.finish();
+  // B's trajectory placed in A's frame, against the truth (mean, m).
+  const std::vector<Pose2> b_poses = b.slam().trajectory();
+  const auto off = [&](const Pose2& frame) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < b_poses.size(); ++i) {
+      const Pose2 est = frame * b_poses[i], truth = between(start_a, rb.ground_truth[i].second);
+      sum += std::hypot(est.x - truth.x, est.y - truth.y);
+    }
+    return sum / static_cast<double>(b_poses.size());
+  };
+  const Pose2 placed = a.knowledge().find("b")->origin_in_holder;
+  EXPECT_GT(off(seen), 0.15);
+  EXPECT_LT(off(placed), 0.5 * off(seen));
+  // B's map bends (its own drift): placed at the robots' true relative
+  // start it is off by about as much (0.55 m here); the closures fit it best.
+  EXPECT_LT(off(placed), off(b_in_a) + 0.03) << "met " << off(seen) << ", placed " << off(placed);
+  EXPECT_GT(a.slam().loop_closer().stats().foreign_accepted, 10u);
+  // The merged map is B's pieces where the graph put B's frame.
+  const MultiResMap want = compose_working_map(a.slam().own_map(), a.knowledge().layers());
+  EXPECT_EQ(largest_difference(want.finest(), a.slam().map().finest()), 0.0);
 }
 
 }  // namespace

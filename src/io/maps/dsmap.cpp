@@ -81,7 +81,18 @@ void encode_level(ByteWriter& w, const DsGrid& grid) {
     }
 }
 
-std::vector<std::uint8_t> encode_payload(const MapSnapshot& snapshot) {
+void encode_levels(ByteWriter& w, const MultiResMap& map) {
+  w.u8(static_cast<std::uint8_t>(map.levels()));
+  for (int l = 0; l < map.levels(); ++l) encode_level(w, map.level(l));
+}
+
+void write_pose(ByteWriter& w, const Pose2& p) {
+  w.f64(p.x);
+  w.f64(p.y);
+  w.f64(p.theta);
+}
+
+std::vector<std::uint8_t> encode_payload(const MapSnapshot& snapshot, std::uint16_t format_version) {
   MapConfig config;  // an empty snapshot still names a valid configuration
   if (!snapshot.layers.empty()) {
     for (std::size_t i = 0; i < snapshot.layers.size(); ++i)
@@ -108,12 +119,20 @@ std::vector<std::uint8_t> encode_payload(const MapSnapshot& snapshot) {
   for (const MapLayer& layer : snapshot.layers) {
     w.str(layer.origin);
     w.u64(layer.version);
-    w.f64(layer.origin_in_holder.x);
-    w.f64(layer.origin_in_holder.y);
-    w.f64(layer.origin_in_holder.theta);
+    write_pose(w, layer.origin_in_holder);
     w.i32(layer.hops);
-    w.u8(static_cast<std::uint8_t>(layer.map->levels()));
-    for (int l = 0; l < layer.map->levels(); ++l) encode_level(w, layer.map->level(l));
+    encode_levels(w, *layer.map);
+    if (format_version < 2) {
+      if (!layer.pieces.empty()) throw std::invalid_argument("encode_dsmap: format version 1 holds no submap pieces");
+      continue;
+    }
+    w.u32(static_cast<std::uint32_t>(layer.pieces.size()));
+    for (const MapPiece& piece : layer.pieces) {
+      if (!piece.map) throw std::invalid_argument("encode_dsmap: a piece of layer '" + layer.origin + "' has no map");
+      w.i32(piece.id);
+      write_pose(w, piece.pose);
+      encode_levels(w, piece.map->thaw(config));
+    }
   }
   return std::move(w.bytes());
 }
@@ -178,8 +197,50 @@ void decode_level(ByteReader& r, DsGrid& grid, const std::string& name, const st
   }
 }
 
-MapSnapshot decode_payload(std::span<const std::uint8_t> payload, const std::string& name) {
+std::shared_ptr<MultiResMap> decode_levels(ByteReader& r, const MapConfig& config, const std::string& name,
+                                           const std::string& where) {
+  const int levels = r.u8("levels");
+  if (levels != config.levels)
+    fail(name, where + " has " + std::to_string(levels) + " levels, the header says " + std::to_string(config.levels));
+  auto map = std::make_shared<MultiResMap>(config);
+  for (int l = 0; l < levels; ++l) decode_level(r, map->mutable_level(l), name, where + " level " + std::to_string(l));
+  return map;
+}
+
+Pose2 read_pose(ByteReader& r, const std::string& name, const std::string& where) {
+  const double x = r.f64("pose x"), y = r.f64("pose y"), theta = r.f64("pose theta");
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta))
+    fail(name, where + ": pose (" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(theta) +
+                   ") is not finite");
+  return Pose2(x, y, theta);
+}
+
+std::vector<MapPiece> decode_pieces(ByteReader& r, const MapConfig& config, const std::string& name,
+                                    const std::string& where) {
+  const std::uint32_t count = r.u32("piece count");
+  const std::size_t min_piece_bytes = 4 + 3 * 8 + 1 + 4 * static_cast<std::size_t>(config.levels);
+  if (count > r.remaining() / min_piece_bytes)
+    fail(name, where + ": " + std::to_string(count) + " pieces cannot fit in the " + std::to_string(r.remaining()) +
+                   " bytes left in the payload");
+  std::vector<MapPiece> pieces;
+  pieces.reserve(count);
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const std::string at = where + " piece " + std::to_string(k);
+    MapPiece piece;
+    piece.id = r.i32("piece id");
+    if (std::any_of(pieces.begin(), pieces.end(), [&](const MapPiece& p) { return p.id == piece.id; }))
+      fail(name, at + ": piece id " + std::to_string(piece.id) + " appears twice");
+    piece.pose = read_pose(r, name, at);
+    piece.map = std::make_shared<const FrozenMap>(*decode_levels(r, config, name, at));
+    pieces.push_back(std::move(piece));
+  }
+  return pieces;
+}
+
+MapSnapshot decode_payload(std::span<const std::uint8_t> payload, std::uint16_t format_version,
+                           const std::string& name) {
   ByteReader r(payload, name, "payload");
+  const bool version_has_pieces = format_version >= 2;
   MapConfig config;
   config.resolution = r.f64("resolution");
   if (!(config.resolution >= kMinResolution && config.resolution <= kMaxResolution))
@@ -202,7 +263,8 @@ MapSnapshot decode_payload(std::span<const std::uint8_t> payload, const std::str
   snapshot.sender = r.str("sender");
   const std::uint32_t layers = r.u32("layer count");
   // Smallest possible layer: empty origin, no tiles on any level.
-  const std::size_t min_layer_bytes = 4 + 8 + 3 * 8 + 4 + 1 + 4 * static_cast<std::size_t>(config.levels);
+  const std::size_t min_layer_bytes =
+      4 + 8 + 3 * 8 + 4 + 1 + 4 * static_cast<std::size_t>(config.levels) + (version_has_pieces ? 4 : 0);
   if (layers > r.remaining() / min_layer_bytes)
     fail(name, std::to_string(layers) + " layers cannot fit in the " + std::to_string(r.remaining()) +
                    " bytes left in the payload");
@@ -212,21 +274,12 @@ MapSnapshot decode_payload(std::span<const std::uint8_t> payload, const std::str
     MapLayer layer;
     layer.origin = r.str("layer origin");
     layer.version = r.u64("layer version");
-    const double x = r.f64("pose x"), y = r.f64("pose y"), theta = r.f64("pose theta");
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta))
-      fail(name, where + " ('" + layer.origin + "'): pose (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
-                     std::to_string(theta) + ") is not finite");
-    layer.origin_in_holder = Pose2(x, y, theta);
+    const std::string named = where + " ('" + layer.origin + "')";
+    layer.origin_in_holder = read_pose(r, name, named);
     layer.hops = r.i32("layer hops");
-    if (layer.hops < 0) fail(name, where + " ('" + layer.origin + "'): negative hop count " + std::to_string(layer.hops));
-    const int levels = r.u8("layer levels");
-    if (levels != config.levels)
-      fail(name, where + " ('" + layer.origin + "') has " + std::to_string(levels) + " levels, the header says " +
-                     std::to_string(config.levels));
-    auto map = std::make_shared<MultiResMap>(config);
-    for (int l = 0; l < levels; ++l)
-      decode_level(r, map->mutable_level(l), name, where + " ('" + layer.origin + "') level " + std::to_string(l));
-    layer.map = std::move(map);
+    if (layer.hops < 0) fail(name, named + ": negative hop count " + std::to_string(layer.hops));
+    layer.map = decode_levels(r, config, name, named);
+    if (version_has_pieces) layer.pieces = decode_pieces(r, config, name, named);
     snapshot.layers.push_back(std::move(layer));
   }
   if (r.remaining() != 0)
@@ -236,8 +289,10 @@ MapSnapshot decode_payload(std::span<const std::uint8_t> payload, const std::str
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_dsmap(const MapSnapshot& snapshot) {
-  const std::vector<std::uint8_t> payload = encode_payload(snapshot);
+std::vector<std::uint8_t> encode_dsmap(const MapSnapshot& snapshot, std::uint16_t format_version) {
+  if (format_version < kDsmapOldestReadable || format_version > kDsmapFormatVersion)
+    throw std::invalid_argument("encode_dsmap: no format version " + std::to_string(format_version));
+  const std::vector<std::uint8_t> payload = encode_payload(snapshot, format_version);
   if (payload.size() > kMaxPayloadBytes)
     throw std::invalid_argument("encode_dsmap: the map needs " + std::to_string(payload.size()) +
                                 " bytes, more than the format allows (" + std::to_string(kMaxPayloadBytes) + ")");
@@ -248,7 +303,7 @@ std::vector<std::uint8_t> encode_dsmap(const MapSnapshot& snapshot) {
   ByteWriter w;
   w.reserve(kHeaderBytes + csize);
   for (const char c : kMagic) w.u8(static_cast<std::uint8_t>(c));
-  w.u16(kDsmapFormatVersion);
+  w.u16(format_version);
   w.u32(static_cast<std::uint32_t>(crc32_z(0, payload.data(), payload.size())));
   w.u32(static_cast<std::uint32_t>(crc32_z(0, compressed.data(), csize)));
   w.u64(payload.size());
@@ -263,9 +318,10 @@ MapSnapshot decode_dsmap(std::span<const std::uint8_t> bytes, const std::string&
   if (!std::equal(magic.begin(), magic.end(), kMagic.begin()))
     fail(name, "not a .dsmap file (it does not start with \"DSMAP\")");
   const std::uint16_t version = r.u16("format version");
-  if (version != kDsmapFormatVersion)
-    fail(name, ".dsmap format version " + std::to_string(version) + " is not supported (this build reads version " +
-                   std::to_string(kDsmapFormatVersion) + ")");
+  if (version < kDsmapOldestReadable || version > kDsmapFormatVersion)
+    fail(name, ".dsmap format version " + std::to_string(version) + " is not supported (this build reads versions " +
+                   std::to_string(kDsmapOldestReadable) + " to " + std::to_string(kDsmapFormatVersion) +
+                   (version > kDsmapFormatVersion ? "; it was written by a newer dsswarm)" : ")"));
   const std::uint32_t crc = r.u32("payload checksum");
   const std::uint32_t compressed_crc = r.u32("compressed checksum");
   const std::uint64_t payload_size = r.u64("payload size");
@@ -299,7 +355,7 @@ MapSnapshot decode_dsmap(std::span<const std::uint8_t> bytes, const std::string&
     fail(name, "compressed map holds " + std::to_string(got) + " bytes, the header says " + std::to_string(size));
   const auto actual_crc = static_cast<std::uint32_t>(crc32_z(0, payload.get(), size));
   if (actual_crc != crc) fail(name, "checksum mismatch in the decompressed map: the data is corrupt");
-  return decode_payload({payload.get(), size}, name);
+  return decode_payload({payload.get(), size}, version, name);
 }
 
 void write_dsmap(const std::string& path, const MapSnapshot& snapshot) {

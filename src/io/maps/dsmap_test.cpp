@@ -7,6 +7,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -58,10 +59,10 @@ MapSnapshot two_layer_snapshot() {
   config.free_space_on_coarse_levels = true;  // coarse levels carry free mass too: every plane is exercised
   MapSnapshot s;
   s.sender = "alpha";
-  s.layers.push_back({"alpha", 42, Pose2(), 0, room_map(config)});
+  s.layers.push_back({"alpha", 42, Pose2(), 0, room_map(config), {}});
   auto other = std::make_shared<MultiResMap>(config);
   other->insert_scan(Pose2(0.5, 0.2, -0.4), Pose2(), room_scan(Pose2(0.5, 0.2, -0.4)));
-  s.layers.push_back({"bravo", 7, Pose2(12.5, -3.25, 2.5), 2, other});
+  s.layers.push_back({"bravo", 7, Pose2(12.5, -3.25, 2.5), 2, other, {}});
   return s;
 }
 
@@ -114,8 +115,9 @@ void expect_same_snapshot(const MapSnapshot& a, const MapSnapshot& b) {
 }
 
 // A file around a hand-made payload, as encode_dsmap frames one: lets the
-// tests reach the payload checks past the checksum.
-Bytes frame(const Bytes& payload, std::uint16_t version = kDsmapFormatVersion) {
+// tests reach the payload checks past the checksum. Hand-made payloads have
+// version 1's layout (no piece counts) unless they say otherwise.
+Bytes frame(const Bytes& payload, std::uint16_t version = 1) {
   Bytes c(ZSTD_compressBound(payload.size()));
   c.resize(ZSTD_compress(c.data(), c.size(), payload.data(), payload.size(), 3));
   Bytes out = {'D', 'S', 'M', 'A', 'P'};
@@ -202,7 +204,7 @@ TEST(Dsmap, EmptySnapshotAndEmptyMapRoundTrip) {
   EXPECT_TRUE(back.layers.empty());
 
   MapSnapshot blank;
-  blank.layers.push_back({"r", 0, Pose2(), 0, std::make_shared<MultiResMap>()});
+  blank.layers.push_back({"r", 0, Pose2(), 0, std::make_shared<MultiResMap>(), {}});
   const MapSnapshot blank_back = decode_dsmap(encode_dsmap(blank), "mem");
   ASSERT_EQ(blank_back.layers.size(), 1u);
   EXPECT_EQ(blank_back.layers[0].map->cells_allocated(), 0u);
@@ -216,7 +218,7 @@ TEST(Dsmap, SkipsVacuousTilesAndKeepsMassesValid) {
   g.mutable_at({1, 0}) = DsMass{0.33333334f, 0.66666666f};          // rounds up on both
   g.mutable_at({2, 0}) = DsMass{1.0f, 0.0f};
   MapSnapshot s;
-  s.layers.push_back({"r", 1, Pose2(), 0, map});
+  s.layers.push_back({"r", 1, Pose2(), 0, map, {}});
   const MapSnapshot back = decode_dsmap(encode_dsmap(s), "mem");
   const DsGrid& b = back.layers[0].map->level(0);
   EXPECT_EQ(b.tiles_allocated(), 1u);
@@ -254,7 +256,9 @@ TEST(Dsmap, RejectsBadHeaders) {
   Bytes b = good;
   b[0] = 'X';
   expect_rejected(b, "not a .dsmap file");
-  expect_rejected(frame(PayloadBuilder().header().u32(0).b, 2), "version 2 is not supported (this build reads version 1)");
+  expect_rejected(frame(PayloadBuilder().header().u32(0).b, 3),
+                  "version 3 is not supported (this build reads versions 1 to 2; it was written by a newer dsswarm)");
+  expect_rejected(frame(PayloadBuilder().header().u32(0).b, 0), "version 0 is not supported");
   b = good;
   b[7] ^= 1;  // payload checksum
   expect_rejected(b, "checksum mismatch in the decompressed map");
@@ -310,6 +314,75 @@ TEST(Dsmap, RejectsBadPayloads) {
   EXPECT_EQ(verdict(frame(PayloadBuilder().header().u32(1).layer_head().level({{-3, 2}, {0, 0}}).b)), "");
 }
 
+// A robot with loop closure on sends its finished submaps apart (MapLayer::pieces).
+MapSnapshot snapshot_with_pieces() {
+  MapSnapshot s = two_layer_snapshot();
+  const MapConfig config = s.layers.front().map->config();
+  MultiResMap piece(config);
+  piece.insert_scan(Pose2(0.2, -0.1, 0.4), Pose2(), room_scan(Pose2(0.2, -0.1, 0.4)));
+  s.layers.front().pieces.push_back({3, Pose2(1.5, -0.25, 0.75), std::make_shared<const FrozenMap>(piece)});
+  s.layers.back().pieces.push_back({0, Pose2(), std::make_shared<const FrozenMap>(*room_map(config))});
+  s.layers.back().pieces.push_back({-7, Pose2(-4.0, 2.0, -3.0), std::make_shared<const FrozenMap>(piece)});
+  return s;
+}
+
+TEST(Dsmap, SubmapPiecesRoundTripWithTheirIdsPosesAndCells) {
+  const MapSnapshot s = snapshot_with_pieces();
+  const Bytes bytes = encode_dsmap(s);
+  const MapSnapshot back = decode_dsmap(bytes, "mem");
+  expect_same_snapshot(s, back);
+  const MapConfig config = s.layers.front().map->config();
+  for (std::size_t i = 0; i < s.layers.size(); ++i) {
+    ASSERT_EQ(back.layers[i].pieces.size(), s.layers[i].pieces.size());
+    for (std::size_t k = 0; k < s.layers[i].pieces.size(); ++k) {
+      const MapPiece& x = s.layers[i].pieces[k];
+      const MapPiece& y = back.layers[i].pieces[k];
+      EXPECT_EQ(y.id, x.id);
+      EXPECT_EQ(y.pose.x, x.pose.x);
+      EXPECT_EQ(y.pose.y, x.pose.y);
+      EXPECT_EQ(y.pose.theta, x.pose.theta);
+      const MultiResMap a = x.map->thaw(config), b = y.map->thaw(config);
+      for (int l = 0; l < config.levels; ++l)
+        expect_same_cells(a.level(l), b.level(l), "piece " + std::to_string(k) + " level " + std::to_string(l));
+    }
+  }
+  EXPECT_EQ(encode_dsmap(back), bytes);  // frozen -> 16 bits -> frozen gives the same bytes
+}
+
+TEST(Dsmap, Version1FilesAreStillRead) {
+  const MapSnapshot s = two_layer_snapshot();
+  const MapSnapshot back = decode_dsmap(encode_dsmap(s, 1), "old.dsmap");
+  expect_same_snapshot(s, back);
+  for (const MapLayer& l : back.layers) EXPECT_TRUE(l.pieces.empty());
+  EXPECT_THROW(encode_dsmap(snapshot_with_pieces(), 1), std::invalid_argument);  // version 1 has no place for them
+}
+
+TEST(Dsmap, RejectsBadPieces) {
+  auto with_pieces = [](const std::function<void(PayloadBuilder&)>& pieces) {
+    PayloadBuilder b;
+    b.header().u32(1).layer_head().level({{0, 0}});
+    pieces(b);
+    return frame(b.b, 2);
+  };
+  EXPECT_EQ(verdict(with_pieces([](PayloadBuilder& b) {
+              b.u32(1).i32(4).f64(1.0).f64(2.0).f64(0.5).u8(1).level({{1, 1}});
+            })),
+            "");
+  expect_rejected(with_pieces([](PayloadBuilder& b) { b.u32(5000000); }), "5000000 pieces cannot fit");
+  expect_rejected(with_pieces([](PayloadBuilder& b) { b.u32(1).i32(4).f64(1.0).f64(std::nan("")).f64(0.5).u8(1).level({}); }),
+                  "layer 0 ('o') piece 0: pose");
+  expect_rejected(with_pieces([](PayloadBuilder& b) { b.u32(1).i32(4).f64(1.0).f64(2.0).f64(0.5).u8(2).level({}); }),
+                  "piece 0 has 2 levels, the header says 1");
+  expect_rejected(with_pieces([](PayloadBuilder& b) {
+                    b.u32(2).i32(4).f64(0.0).f64(0.0).f64(0.0).u8(1).level({}).i32(4).f64(0.0).f64(0.0).f64(0.0).u8(1).level({});
+                  }),
+                  "piece id 4 appears twice");
+  expect_rejected(with_pieces([](PayloadBuilder& b) {
+                    b.u32(2).i32(4).f64(0.0).f64(0.0).f64(0.0).u8(1).level({}).i32(5).f64(0.0);
+                  }),
+                  "2 pieces cannot fit in the 45 bytes");
+}
+
 // Garbage must give InputError, never a crash, a hang or a huge allocation
 // (run under -DDSSWARM_SANITIZE=ON too). Truncations and byte flips of a
 // valid file must all be refused; should one slip through, it must at least
@@ -321,7 +394,7 @@ TEST(Dsmap, FuzzedInputsAreRejectedCleanly) {
   s.sender = "f";
   auto map = std::make_shared<MultiResMap>(config);
   map->insert_scan(Pose2(), Pose2(), room_scan(Pose2()));
-  s.layers.push_back({"f", 1, Pose2(), 0, map});
+  s.layers.push_back({"f", 1, Pose2(), 0, map, {}});
   const Bytes good = encode_dsmap(s);
   auto accepted_only_if_identical = [&](const Bytes& b, const std::string& what) {
     try {
@@ -361,7 +434,7 @@ TEST(Dsmap, FuzzedInputsAreRejectedCleanly) {
   // checks alone must hold (counts, tile origins, masses...).
   Bytes payload(ZSTD_getFrameContentSize(good.data() + 31, good.size() - 31));
   ASSERT_EQ(ZSTD_decompress(payload.data(), payload.size(), good.data() + 31, good.size() - 31), payload.size());
-  ASSERT_EQ(verdict(frame(payload)), "");
+  ASSERT_EQ(verdict(frame(payload, kDsmapFormatVersion)), "");
   for (int trial = 0; trial < 800; ++trial) {
     Bytes p = payload;
     const int flips = 1 + trial % 3;
@@ -371,14 +444,14 @@ TEST(Dsmap, FuzzedInputsAreRejectedCleanly) {
       const auto at = std::min(p.size() - 1, static_cast<std::size_t>(rng.uniform() * span));
       p[at] = static_cast<std::uint8_t>(rng.uniform() * 256);
     }
-    (void)verdict(frame(p));  // decodes or InputError; anything else fails
+    (void)verdict(frame(p, kDsmapFormatVersion));  // decodes or InputError; anything else fails
   }
   // Valid compression and checksums around a random payload.
   for (int trial = 0; trial < 2000; ++trial) {
     Bytes p = PayloadBuilder().header(0.05, 2).b;
     const auto n = static_cast<std::size_t>(rng.uniform() * 300);
     for (std::size_t i = 0; i < n; ++i) p.push_back(static_cast<std::uint8_t>(rng.uniform() * 256));
-    (void)verdict(frame(p));  // accepted or InputError; anything else fails
+    (void)verdict(frame(p, kDsmapFormatVersion));  // accepted or InputError; anything else fails
   }
 }
 
@@ -391,7 +464,7 @@ TEST(Dsmap, RealisticMapSizeAndRoundTrip) {
     map->insert_scan(sim.ground_truth[i].second, sim.log.scans[i].laser_offset, scan_to_points(sim.log.scans[i]));
   MapSnapshot s;
   s.sender = "sim";
-  s.layers.push_back({"sim", sim.log.scans.size() / 2, Pose2(), 0, map});
+  s.layers.push_back({"sim", sim.log.scans.size() / 2, Pose2(), 0, map, {}});
 
   const auto t0 = std::chrono::steady_clock::now();
   const Bytes bytes = encode_dsmap(s);
