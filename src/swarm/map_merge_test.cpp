@@ -4,6 +4,7 @@
 
 #include "common/errors.hpp"
 #include "matching/scan_scorer.hpp"
+#include "swarm/map_knowledge.hpp"
 #include "swarm/test_scenes.hpp"
 
 namespace dsswarm {
@@ -52,6 +53,42 @@ TEST(MapMerge, ForeignMapLandsOnTheSameWallsThroughTheTransform) {
   const double off = score_pose(wrong.finest(), points, a_frame.inverse() * probe);
   EXPECT_GT(right, 0.3);
   EXPECT_GT(right, 2.0 * off);
+}
+
+// A robot with loop closure on sends its finished submaps apart, each at its
+// pose in the robot's frame: the copy another robot holds follows the
+// sender's later loop closures, since a newer snapshot moves the pieces.
+TEST(MapMerge, PiecesLandWhereTheSendersLatestSnapshotPutsThem) {
+  const World world = test::l_shaped_office();
+  Rng rng(3);
+  const Pose2 a_frame{1.0, 1.0, 0.0}, b_frame{8.0, 2.0, 2.0};
+  const Pose2 b_in_a = a_frame.inverse() * b_frame;
+  const MultiResMap b_submap = test::map_from(world, {{8.0, 2.0, 2.0}, {6.0, 2.5, 0.5}}, b_frame, rng);
+  const auto frozen = std::make_shared<const FrozenMap>(b_submap);
+  const auto growing = std::make_shared<const MultiResMap>(b_submap.config());  // B's next submap: empty yet
+  // Before B closed a loop it had this submap 0.3 m and 3 degrees off; after, where it is.
+  const MapLayer before{"b", 10, Pose2{}, 0, growing, {{4, Pose2{0.3, -0.2, 0.05}, frozen}}};
+  MapLayer after = before;
+  after.version = 20;
+  after.pieces.front().pose = Pose2{};
+  const MultiResMap own = test::map_from(world, {{2.0, 1.5, 0.0}}, a_frame, rng);
+  MapKnowledge a("a");
+  ASSERT_TRUE(a.absorb(MapSnapshot{"b", {before}}, b_in_a));
+  const MultiResMap stale = compose_working_map(own, a.layers());
+  ASSERT_TRUE(a.absorb(MapSnapshot{"b", {after}}, b_in_a));
+  EXPECT_FALSE(a.absorb(MapSnapshot{"b", {before}}, b_in_a));  // older: changes nothing
+  const MultiResMap now = compose_working_map(own, a.layers());
+  // A scan where only B had been fits the map at the true pose once the piece moved.
+  const Pose2 probe{7.0, 2.8, -1.0};
+  const auto points = test::scan_at(world, probe, rng);
+  const double right = score_pose(now.finest(), points, a_frame.inverse() * probe);
+  const double off = score_pose(stale.finest(), points, a_frame.inverse() * probe);
+  EXPECT_GT(right, 0.3);
+  EXPECT_GT(right, 2.0 * off);
+  // The layer's evidence in B's frame is the piece where it is (the growing submap is empty).
+  MultiResMap placed(b_submap.config());
+  combine_into(placed, frozen->thaw(b_submap.config()), Pose2{});
+  EXPECT_TRUE(same_cells(layer_evidence(after).finest(), placed.finest()));
 }
 
 TEST(MapMerge, ComposeIgnoresTheOrderLayersArriveIn) {
