@@ -83,7 +83,7 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   EncounterView v;
   v.map = &slam_.map();
   v.pose = slam_.pose();
-  v.scan_index = slam_.scans_processed() - 1;
+  v.scan_index = slam_.scans_processed() > 0 ? slam_.scans_processed() - 1 : 0;
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
   v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
                                         config.surroundings_points);
