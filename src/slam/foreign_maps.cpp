@@ -23,6 +23,18 @@ void measure(const FrozenMap& map, const MapConfig& config, ForeignPieceInfo& in
 
 }  // namespace
 
+void follow_piece(int piece, Pose2& then, Pose2& relative, const std::vector<ForeignPieceInfo>& pieces) {
+  if (piece < 0 || static_cast<std::size_t>(piece) >= pieces.size()) return;
+  const Pose2& now = pieces[static_cast<std::size_t>(piece)].piece.pose;
+  if (now.x == then.x && now.y == then.y && now.theta == then.theta) return;
+  relative = now * then.inverse() * relative;
+  then = now;
+}
+
+void follow_pieces(std::vector<Constraint>& constraints, const std::vector<ForeignPieceInfo>& pieces) {
+  for (Constraint& c : constraints) follow_piece(c.piece, c.piece_pose, c.relative, pieces);
+}
+
 int ForeignMaps::index_of(int frame) {
   const auto it = std::find(frame_ids_.begin(), frame_ids_.end(), frame);
   if (it != frame_ids_.end()) return static_cast<int>(it - frame_ids_.begin());

@@ -33,6 +33,12 @@ struct ForeignPieceInfo {
   double radius = 0.0;               // m from the centre that holds all its evidence
 };
 
+// A closure measured in a piece that has moved since (that robot closed a
+// loop and sent the piece again) moves with it: relative := now ⊕ then⁻¹ ⊕
+// relative, and then := now. Nothing for piece < 0 (not in a piece).
+void follow_piece(int piece, Pose2& then, Pose2& relative, const std::vector<ForeignPieceInfo>& pieces);
+void follow_pieces(std::vector<Constraint>& constraints, const std::vector<ForeignPieceInfo>& pieces);
+
 class ForeignMaps {
  public:
   explicit ForeignMaps(const MapConfig& map) : map_(map) {}

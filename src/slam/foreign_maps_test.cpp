@@ -110,5 +110,38 @@ TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
   EXPECT_DOUBLE_EQ(maps.frame_pose(1).x, 4.0);
 }
 
+// Robot 1 closed a loop after we had closed into one of its submaps, and its
+// next snapshot moved that submap: our closure moves with it, as if measured
+// in the submap where it lies now; closures into other pieces, and the
+// encounter (in no piece), stay.
+TEST(ForeignMaps, AClosureIntoAPieceMovesWithThePiece) {
+  MapConfig config;
+  MultiResMap map(config);
+  map.mutable_level(0).mutable_at({3, 4}) = {0.6f, 0.1f};
+  auto frozen = std::make_shared<const FrozenMap>(map);
+  ForeignMaps maps(config);
+  const Pose2 before(2.0, 1.0, 0.3), after(2.2, 0.9, 0.33);
+  maps.set(1, Pose2(), {{0, Pose2(), frozen}, {1, before, frozen}});
+  const Pose2 in_cells(0.5, -0.25, 0.1);  // the node where the search placed it in piece 1's cells
+  std::vector<Constraint> constraints{maps.encounter(1, 3, Pose2(1, 1, 0), Pose2()),
+                                      {Constraint::Kind::foreign, 0, 5, in_cells, 0, Pose2()},
+                                      {Constraint::Kind::foreign, 0, 6, before * in_cells, 1, before}};
+  const std::vector<Constraint> measured = constraints;
+  follow_pieces(constraints, maps.pieces());  // nothing moved yet
+  for (std::size_t i = 0; i < constraints.size(); ++i) EXPECT_EQ(constraints[i].relative.x, measured[i].relative.x);
+
+  maps.set(1, Pose2(), {{0, Pose2(), frozen}, {1, after, frozen}});
+  follow_pieces(constraints, maps.pieces());
+  const Pose2 want = after * in_cells;
+  EXPECT_NEAR(constraints[2].relative.x, want.x, 1e-12);
+  EXPECT_NEAR(constraints[2].relative.y, want.y, 1e-12);
+  EXPECT_NEAR(constraints[2].relative.theta, want.theta, 1e-12);
+  EXPECT_EQ(constraints[2].piece_pose.x, after.x);
+  for (std::size_t i : {0u, 1u}) {
+    EXPECT_EQ(constraints[i].relative.x, measured[i].relative.x);
+    EXPECT_EQ(constraints[i].relative.theta, measured[i].relative.theta);
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -122,7 +122,8 @@ void count_rejection(LoopClosureStats& stats, LoopRejection r) {
 }
 
 Constraint as_constraint(const LoopCandidate& c) {
-  return {c.foreign ? Constraint::Kind::foreign : Constraint::Kind::loop, c.submap, c.node, c.relative};
+  return {c.foreign ? Constraint::Kind::foreign : Constraint::Kind::loop, c.submap, c.node, c.relative, c.piece,
+          c.piece_pose};
 }
 
 std::vector<Task> tasks_for(const RoundInput& in, const LoopClosureConfig& config) {
@@ -209,6 +210,8 @@ std::vector<LoopCandidate> search_all(const RoundInput& in, const LoopClosureCon
       r.candidate.foreign = true;
       r.candidate.submap = piece.frame;
       r.candidate.relative = piece.piece.pose * r.candidate.relative;  // from its cells into its robot's frame
+      r.candidate.piece = t.target.index;
+      r.candidate.piece_pose = piece.piece.pose;
       ++stats.foreign_candidates;
     } else {
       r.candidate.submap = t.target.index;
@@ -304,11 +307,15 @@ void complete_input(RoundInput& in, const LoopState& start) {
     if (in.frame_tied[f]) g.frames[f] = start.frames[f];
   g.constraints.insert(g.constraints.end(), start.closures.begin(), start.closures.end());
   in.pending = start.pending;
+  // Other robots' pieces that moved since (their later closures): ours into them follow.
+  follow_pieces(g.constraints, in.foreign);
+  for (PendingCandidate& p : in.pending) follow_piece(p.candidate.piece, p.candidate.piece_pose, p.candidate.relative, in.foreign);
   in.last_closure_travel = start.last_closure_travel;
 }
 
 LoopState next_state(const LoopState& start, const RoundInput& in, const RoundOutput& out) {
   LoopState next = start;
+  follow_pieces(next.closures, in.foreign);  // as the round saw them (complete_input)
   next.optimized = out.optimized;
   for (const LoopCandidate& c : out.accepted) {
     next.closures.push_back(as_constraint(c));

@@ -64,6 +64,8 @@ struct LoopCandidate {
   int submap = 0;           // foreign: the other robot's frame (its index in the graph's frames)
   bool foreign = false;     // into another robot's submap (foreign_maps.hpp)
   Pose2 relative;           // the node's pose in the submap's frame (its anchor), or in the foreign frame
+  int piece = -1;           // foreign: the piece searched, and its pose in its frame then (Constraint)
+  Pose2 piece_pose{};
   double score = 0.0;       // branch-and-bound score of the best pose
   double known = 0.0;       // match_quality of the refined pose
   double inliers = 0.0;

@@ -49,6 +49,12 @@ struct Constraint {
   int submap = 0;   // foreign: the index of a frame in PoseGraph::frames
   int node = 0;
   Pose2 relative;   // measured pose of the node in the submap's frame (its anchor), or in the foreign frame
+  // A closure into another robot's submap: that piece (its index in
+  // ForeignMaps::pieces) and its pose in its frame when `relative` was
+  // measured; `relative` moves with the piece when that robot's later
+  // closures move it (follow_pieces, foreign_maps.hpp). -1: not in a piece.
+  int piece = -1;
+  Pose2 piece_pose{};
 };
 
 struct PoseGraph {
