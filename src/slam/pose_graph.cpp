@@ -1,5 +1,7 @@
 #include "slam/pose_graph.hpp"
 
+#include <algorithm>
+
 #include <ceres/ceres.h>
 
 #include <array>
@@ -70,9 +72,14 @@ Pose2 constraint_error(const PoseGraph& graph, const Constraint& c) {
   return between(c.relative, between(reference_pose(graph, c), graph.nodes[static_cast<std::size_t>(c.node)]));
 }
 
-OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
+namespace {
+
+enum class Part { all, own, frames };
+
+// Solves for the poses the constraints of `part` reach: all of them; this
+// robot's own (no foreign constraints); or the frames alone, nodes held.
+OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part part) {
   OptimizationSummary summary;
-  if (graph.nodes.empty()) return summary;
   std::vector<Block> nodes, submaps, frames;
   for (const Pose2& p : graph.nodes) nodes.push_back(block_of(p));
   for (const Pose2& p : graph.submaps) submaps.push_back(block_of(p));
@@ -83,14 +90,19 @@ OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
   ceres::Problem problem(problem_options);
   ceres::HuberLoss huber(config.loop_huber);
   for (const Constraint& c : graph.constraints) {
+    const bool foreign = c.kind == Constraint::Kind::foreign;
+    if ((part == Part::own && foreign) || (part == Part::frames && !foreign)) continue;
     const auto [sigma_xy, sigma_theta] = sigmas(c.kind, config);
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(
         new RelativePoseError{c.relative, 1.0 / sigma_xy, 1.0 / sigma_theta});
     const bool robust = c.kind != Constraint::Kind::local;
     const auto i = static_cast<std::size_t>(c.submap);
-    double* reference = c.kind == Constraint::Kind::foreign ? frames[i].data() : submaps[i].data();
-    problem.AddResidualBlock(cost, robust ? &huber : nullptr, reference, nodes[static_cast<std::size_t>(c.node)].data());
+    double* reference = foreign ? frames[i].data() : submaps[i].data();
+    double* node = nodes[static_cast<std::size_t>(c.node)].data();
+    problem.AddResidualBlock(cost, robust ? &huber : nullptr, reference, node);
+    if (part == Part::frames) problem.SetParameterBlockConstant(node);
   }
+  if (problem.NumResidualBlocks() == 0) return summary;
   // One submap held fixed anchors the global frame.
   if (graph.fixed_submap >= 0 && static_cast<std::size_t>(graph.fixed_submap) < submaps.size()) {
     double* fixed = submaps[static_cast<std::size_t>(graph.fixed_submap)].data();
@@ -114,6 +126,23 @@ OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
   for (std::size_t i = 0; i < submaps.size(); ++i) graph.submaps[i] = {submaps[i][0], submaps[i][1], submaps[i][2]};
   for (std::size_t i = 0; i < frames.size(); ++i) graph.frames[i] = {frames[i][0], frames[i][1], frames[i][2]};
   return summary;
+}
+
+}  // namespace
+
+OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
+  if (graph.nodes.empty()) return {};
+  const bool foreign = std::any_of(graph.constraints.begin(), graph.constraints.end(),
+                                   [](const Constraint& c) { return c.kind == Constraint::Kind::foreign; });
+  if (config.foreign_moves_own || !foreign) return solve(graph, config, Part::all);
+  OptimizationSummary own = solve(graph, config, Part::own);
+  if (!own.usable) return own;
+  const OptimizationSummary placed = solve(graph, config, Part::frames);
+  own.iterations += placed.iterations;
+  own.initial_cost += placed.initial_cost;
+  own.final_cost += placed.final_cost;
+  own.usable = placed.usable;
+  return own;
 }
 
 }  // namespace dsswarm

@@ -39,6 +39,12 @@ struct PoseGraphConfig {
   // while a right one after a long drift still pulls the loop shut.
   double loop_huber = 3.0;
   int max_iterations = 50;
+  // Whether constraints into other robots' maps may move this robot's own
+  // nodes and submaps (one optimization of everything), or only place the
+  // other robots' frames (this robot's graph first, on its own constraints,
+  // then the frames against its nodes held fixed): its map then stays its
+  // own however the others' maps are bent.
+  bool foreign_moves_own = true;
 
   void validate() const;  // throws ConfigError naming the field
 };

@@ -83,6 +83,43 @@ TEST(PoseGraph, AWrongLoopEdgeAmongRightOnesIsOutweighedAndStandsOut) {
   EXPECT_LT(worst_right, 0.1);
 }
 
+// Another robot's frame, seen from our nodes at both ends of the drifting
+// square as if its map were bent: coupled, those constraints pull our nodes
+// too; with foreign_moves_own off our graph is solved on its own constraints
+// and only the frame is placed, against our nodes as they are.
+TEST(PoseGraph, ForeignConstraintsMoveOurNodesOnlyWhenAllowed) {
+  const std::vector<Pose2> truth = test::square();
+  PoseGraph base = test::drifting_graph(truth);
+  base.frames.push_back(Pose2(1.0, 2.0, 0.3));
+  const int last = static_cast<int>(truth.size()) - 1;
+  // Node 0 and the last node (the same place) seen at the frame's origin, the last 0.3 m and 2 degrees off.
+  base.constraints.push_back({Constraint::Kind::foreign, 0, 0, Pose2(1.0, 2.0, 0.3).inverse() * truth.front()});
+  base.constraints.push_back(
+      {Constraint::Kind::foreign, 0, last, Pose2(1.3, 2.0, 0.3 + 0.035).inverse() * truth.back()});
+  PoseGraph alone = base;
+  alone.constraints.resize(alone.constraints.size() - 2);
+  alone.frames.clear();
+  PoseGraphConfig config;
+  ASSERT_TRUE(optimize(alone, config).usable);
+
+  PoseGraph rigid = base, coupled = base;
+  config.foreign_moves_own = false;
+  ASSERT_TRUE(optimize(rigid, config).usable);
+  config.foreign_moves_own = true;
+  ASSERT_TRUE(optimize(coupled, config).usable);
+  double rigid_moved = 0.0, coupled_moved = 0.0;
+  for (std::size_t i = 0; i < alone.nodes.size(); ++i) {
+    const auto d = [&](const PoseGraph& g) { return std::hypot(g.nodes[i].x - alone.nodes[i].x, g.nodes[i].y - alone.nodes[i].y); };
+    rigid_moved = std::max(rigid_moved, d(rigid));
+    coupled_moved = std::max(coupled_moved, d(coupled));
+  }
+  EXPECT_LT(rigid_moved, 1e-6);
+  EXPECT_GT(coupled_moved, 0.05);
+  // The frame is placed between what the two nodes say, either way.
+  EXPECT_GT(rigid.frames[0].x, 1.0);
+  EXPECT_LT(rigid.frames[0].x, 1.3);
+}
+
 TEST(PoseGraph, ConstraintErrorIsZeroWhereTheMeasurementHolds) {
   PoseGraph g;
   g.nodes = {Pose2(1, 2, 0.3), Pose2(2, 2.5, 0.6)};
