@@ -72,13 +72,11 @@ class TransferWatch {
 };
 
 TEST(MultiProcessFaults, KillMidTransferThenResumeFromTheCheckpoint) {
-  Rig rig;
   const int domain = test_domain();
-  const std::string swarm = fmt::format("kill{}", getpid());
-  // 1 kB chunks: a first snapshot (~170 kB) takes ~170 messages, long enough to land a kill in.
-  const fs::path config = rig.dir() / "config.json";
-  std::ofstream(config) << R"({"swarm": {"chunk_bytes": 1024}})";
-  const double start_at = unix_in(3.0);
+  std::unique_ptr<Rig> rig_holder;
+  std::string swarm;
+  fs::path config;
+  double start_at = 0.0;
   std::map<std::string, std::size_t> process;
   auto agent = [&](int k, std::vector<std::string> extra) {
     SimAgent a;
@@ -86,21 +84,37 @@ TEST(MultiProcessFaults, KillMidTransferThenResumeFromTheCheckpoint) {
     a.robot = k;
     a.start_at = start_at;
     a.domain = domain;
-    a.out = rig.dir() / a.name;
+    a.out = rig_holder->dir() / a.name;
     a.extra = {"--swarm", swarm, "--config", config.string(), "--checkpoint-period", "1", "--linger", "5"};
     a.extra.insert(a.extra.end(), extra.begin(), extra.end());
-    return rig.start(a.name + (extra.empty() ? "" : "_resumed"), agent_args(a));
+    return rig_holder->start(a.name + (extra.empty() ? "" : "_resumed"), agent_args(a));
   };
-  // A second reader of robot3's inbox, gone once it has seen what it waits for:
-  // a reader that stops taking holds up robot3's senders (reliable, keep-all).
-  auto watch = std::make_unique<TransferWatch>(domain, swarm, "robot3", "robot1");
-  for (int k = 1; k <= 3; ++k) process[fmt::format("robot{}", k)] = agent(k, {});
-
-  const auto seen = watch->watch([&] { rig.group().signal(process["robot1"], SIGKILL); }, 60s, 1s);
-  watch.reset();
-  ASSERT_TRUE(seen) << "no snapshot transfer from robot1 to robot3 within 60 s";
-  EXPECT_EQ(rig.wait(process["robot1"], 5s), 128 + SIGKILL);
-  ASSERT_LT(seen->arrived, seen->count) << "the kill came after the whole transfer had been sent";
+  // The kill races the sender: when robot1 has put the whole snapshot on the
+  // wire before SIGKILL lands (a small snapshot, a busy machine), the run
+  // proves nothing about a cut transfer and is started again (at most 3 times).
+  std::optional<TransferWatch::Seen> seen;
+  for (int attempt = 1; attempt <= 3; ++attempt) {
+    rig_holder.reset();  // stops the last attempt's robots first: the new rig reuses its folder
+    rig_holder = std::make_unique<Rig>();
+    swarm = fmt::format("kill{}-{}", getpid(), attempt);
+    // 1 kB chunks: a first snapshot (~170 kB) takes ~170 messages, long enough to land a kill in.
+    config = rig_holder->dir() / "config.json";
+    std::ofstream(config) << R"({"swarm": {"chunk_bytes": 1024}})";
+    start_at = unix_in(3.0);
+    // A second reader of robot3's inbox, gone once it has seen what it waits for:
+    // a reader that stops taking holds up robot3's senders (reliable, keep-all).
+    auto watch = std::make_unique<TransferWatch>(domain, swarm, "robot3", "robot1");
+    for (int k = 1; k <= 3; ++k) process[fmt::format("robot{}", k)] = agent(k, {});
+    seen = watch->watch([&] { rig_holder->group().signal(process["robot1"], SIGKILL); }, 60s, 1s);
+    watch.reset();
+    ASSERT_TRUE(seen) << "no snapshot transfer from robot1 to robot3 within 60 s";
+    EXPECT_EQ(rig_holder->wait(process["robot1"], 5s), 128 + SIGKILL);
+    if (seen->arrived < seen->count) break;
+    std::cout << "attempt " << attempt << ": the kill came after the whole transfer had been sent (" << seen->arrived
+              << " of " << seen->count << " chunks); again\n";
+  }
+  Rig& rig = *rig_holder;
+  ASSERT_LT(seen->arrived, seen->count) << "in 3 attempts the kill always came after the whole transfer had been sent";
   std::cout << "killed robot1 in encounter " << seen->encounter << ": " << seen->arrived << " of " << seen->count
             << " chunks arrived\n";
 
