@@ -50,6 +50,7 @@ struct AgentArgs {
   std::size_t queue = 8;  // scans waiting for SLAM; the oldest are skipped beyond
   std::optional<double> start_at;  // unix time of clock 0 (launch starts robots together)
   bool no_ros_output = false;
+  bool reliable_input = false;
   bool resume = false;
   double checkpoint_period = 30.0;
   double linger = 5.0;
@@ -177,6 +178,7 @@ void run_agent(const AgentArgs& a) {
     live.odom_topic = a.odom_topic;
     live.odometry = a.tf_odometry ? net::OdometrySource::kTf : net::OdometrySource::kTopic;
     live.queue_capacity = a.queue;
+    live.reliable = a.reliable_input;
     feed = std::make_unique<LiveFeed>(net.ros(), live);
   }
   std::unique_ptr<DdsOutputs> outputs;
@@ -240,6 +242,9 @@ void add_agent_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--start-at", args->start_at, "With --log/--sim: unix time at which playback starts");
   cmd->add_flag("--no-ros-output", args->no_ros_output, "Do not publish /map, /tf, pose and path");
+  cmd->add_flag("--reliable-input", args->reliable_input,
+                "Read scan and odometry reliably (no sample lost under load; matches only reliable publishers "
+                "such as `dsswarm replay`, not SensorDataQoS lidar drivers)");
   cmd->add_flag("--resume", args->resume, "Continue from the checkpoint in --out (after a crash)");
   cmd->add_option("--checkpoint-period", args->checkpoint_period, "Seconds between checkpoints (0: only at exit)")
       ->capture_default_str();

@@ -290,12 +290,13 @@ LiveScanSource::LiveScanSource(Participant& participant, const LiveInputConfig& 
   Impl& s = *impl_;
   s.scan_topic.emplace(participant, ros_topic_name(config.ns, config.scan_topic));
   s.tf_static_topic.emplace(participant, ros_topic_name(config.ns, config.tf_static_topic));
-  s.scan_reader.emplace(*s.scan_topic, ros_sensor_data(), "", DataListener(&s, &Impl::on_scans).get());
+  const Qos sensor = config.reliable ? ros_default(config.reliable_depth) : ros_sensor_data();
+  s.scan_reader.emplace(*s.scan_topic, sensor, "", DataListener(&s, &Impl::on_scans).get());
   s.tf_static_reader.emplace(*s.tf_static_topic, ros_tf_static(100), "",
                              DataListener(&s, &Impl::on_tf_static).get());
   if (config.odometry == OdometrySource::kTopic) {
     s.odom_topic.emplace(participant, ros_topic_name(config.ns, config.odom_topic));
-    s.odom_reader.emplace(*s.odom_topic, ros_sensor_data(), "", DataListener(&s, &Impl::on_odometry).get());
+    s.odom_reader.emplace(*s.odom_topic, sensor, "", DataListener(&s, &Impl::on_odometry).get());
   } else if (config.odometry == OdometrySource::kTf) {
     s.tf_topic.emplace(participant, ros_topic_name(config.ns, config.tf_topic));
     s.tf_reader.emplace(*s.tf_topic, ros_tf(), "", DataListener(&s, &Impl::on_tf).get());

@@ -41,6 +41,11 @@ struct LiveInputConfig {
   // topic, the messages' child_frame_id (when set) is used instead.
   std::string base_frame = "base_link";
   std::size_t queue_capacity = 4;  // scans held for the consumer; the oldest is dropped beyond
+  // Scans and odometry read as lidar drivers publish them (SensorDataQoS:
+  // best effort, a sample may be lost under load), or reliably, which only
+  // reliable publishers match (`dsswarm replay`, a bag played reliably).
+  bool reliable = false;
+  std::int32_t reliable_depth = 100;  // samples the reliable readers keep
   // Wall-clock seconds a scan waits for odometry on both sides of its stamp
   // (or at it) and for its laser offset; then it goes out with what is known
   // (odometry held up to max_extrapolation beyond the nearest pose, else

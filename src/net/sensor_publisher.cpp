@@ -44,8 +44,10 @@ SensorPublisher::SensorPublisher(Participant& participant, const SensorPublisher
       odom_topic_(participant, ros_topic_name(config.ns, config.odom_topic)),
       tf_topic_(participant, ros_topic_name(config.ns, config.tf_topic)),
       tf_static_topic_(participant, ros_topic_name(config.ns, config.tf_static_topic)),
-      scan_writer_(scan_topic_, ros_default(10)),
-      odom_writer_(odom_topic_, ros_default(10)),
+      // Reliable, with room for a reader that falls behind for a while (a
+      // reliable one may be waiting for every scan: agent --reliable-input).
+      scan_writer_(scan_topic_, ros_default(100)),
+      odom_writer_(odom_topic_, ros_default(100)),
       tf_writer_(tf_topic_, ros_tf()),
       tf_static_writer_(tf_static_topic_, ros_tf_static(1)) {}
 
