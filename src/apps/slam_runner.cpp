@@ -1,6 +1,5 @@
 #include "apps/slam_runner.hpp"
 
-
 #include <fmt/core.h>
 #include <sys/resource.h>
 

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "geometry/pose2.hpp"
-
 #include "grid/multires_map.hpp"
 
 namespace dsswarm {

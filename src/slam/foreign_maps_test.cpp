@@ -89,11 +89,16 @@ TEST(ForeignMaps, AnEncounterTurnedByOneDegreeIsStraightenedByClosuresIntoTheOth
   EXPECT_LT(o.b_error, 0.5 * o.b_error_met);
 }
 
-TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
-  MapConfig config;
+// A piece whose only evidence is cell (3, 4).
+std::shared_ptr<const FrozenMap> one_cell_piece(const MapConfig& config) {
   MultiResMap map(config);
   map.mutable_level(0).mutable_at({3, 4}) = {0.6f, 0.1f};
-  auto frozen = std::make_shared<const FrozenMap>(map);
+  return std::make_shared<const FrozenMap>(map);
+}
+
+TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
+  const MapConfig config;
+  const auto frozen = one_cell_piece(config);
   ForeignMaps maps(config);
   EXPECT_EQ(maps.set(1, Pose2(1, 0, 0), {{0, Pose2(), frozen}, {1, Pose2(2, 0, 0), frozen}}).size(), 2u);
   // Robot 1 closed a loop: piece 1 moved; piece 2 is new.
@@ -115,10 +120,8 @@ TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
 // in the submap where it lies now; closures into other pieces, and the
 // encounter (in no piece), stay.
 TEST(ForeignMaps, AClosureIntoAPieceMovesWithThePiece) {
-  MapConfig config;
-  MultiResMap map(config);
-  map.mutable_level(0).mutable_at({3, 4}) = {0.6f, 0.1f};
-  auto frozen = std::make_shared<const FrozenMap>(map);
+  const MapConfig config;
+  const auto frozen = one_cell_piece(config);
   ForeignMaps maps(config);
   const Pose2 before(2.0, 1.0, 0.3), after(2.2, 0.9, 0.33);
   maps.set(1, Pose2(), {{0, Pose2(), frozen}, {1, before, frozen}});

@@ -21,6 +21,7 @@ namespace dsswarm {
 namespace {
 
 constexpr std::string_view kMagic = "DSMAP";
+constexpr std::uint16_t kFirstVersionWithPieces = 2;  // layers carry submap pieces from this version on
 constexpr std::size_t kHeaderBytes = 5 + 2 + 4 + 4 + 8 + 8;  // magic, version, 2 CRCs, 2 sizes
 // Level 3 (zstd's default): on the simulated building, 9 is 5% smaller for
 // 7× the time, 19 is 15% smaller for 200× the time.
@@ -122,7 +123,7 @@ std::vector<std::uint8_t> encode_payload(const MapSnapshot& snapshot, std::uint1
     write_pose(w, layer.origin_in_holder);
     w.i32(layer.hops);
     encode_levels(w, *layer.map);
-    if (format_version < 2) {
+    if (format_version < kFirstVersionWithPieces) {
       if (!layer.pieces.empty()) throw std::invalid_argument("encode_dsmap: format version 1 holds no submap pieces");
       continue;
     }
@@ -240,7 +241,7 @@ std::vector<MapPiece> decode_pieces(ByteReader& r, const MapConfig& config, cons
 MapSnapshot decode_payload(std::span<const std::uint8_t> payload, std::uint16_t format_version,
                            const std::string& name) {
   ByteReader r(payload, name, "payload");
-  const bool version_has_pieces = format_version >= 2;
+  const bool version_has_pieces = format_version >= kFirstVersionWithPieces;
   MapConfig config;
   config.resolution = r.f64("resolution");
   if (!(config.resolution >= kMinResolution && config.resolution <= kMaxResolution))
