@@ -41,9 +41,9 @@ std::optional<Pose2> alignment_until(const Trajectory& own, const Trajectory& tr
 // Cells of the world lattice where `grid` holds evidence, placed through `frame_in_world`.
 std::unordered_set<std::int64_t> known_world_cells(const DsGrid& grid, const Pose2& frame_in_world) {
   std::unordered_set<std::int64_t> out;
-  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
-      if (cells[i].occupied + cells[i].free < kKnownMass) continue;
+      if (cells[i].mass().occupied + cells[i].mass().free < kKnownMass) continue;
       const Eigen::Vector2d w = frame_in_world * grid.cell_center(DsGrid::tile_cell(origin, i));
       const auto x = static_cast<std::int64_t>(std::floor(w.x() / kCoverageCell));
       const auto y = static_cast<std::int64_t>(std::floor(w.y() / kCoverageCell));

@@ -118,8 +118,7 @@ GridRaster DsGrid::to_raster(int margin) const {
   CellIndex hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
   for (const auto& t : tiles_) {
     for (int i = 0; i < kTileCells; ++i) {
-      const DsMass& m = t->cells[i];
-      if (m.occupied == 0.0f && m.free == 0.0f) continue;
+      if (t->cells[i].vacuous()) continue;
       const CellIndex c = tile_cell(t->origin, i);
       const std::int32_t x = c.x, y = c.y;
       lo = {std::min(lo.x, x), std::min(lo.y, y)};

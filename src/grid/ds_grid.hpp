@@ -50,7 +50,7 @@ class DsGrid {
   // Read access; cells never written are vacuous (all unknown).
   DsMass at(CellIndex c) const {
     const Tile* t = find_tile(c);
-    return t ? t->cells[local_index(c)] : DsMass::vacuous();
+    return t ? t->cells[local_index(c)].mass() : DsMass::vacuous();
   }
   // Occupancy in [0, 1] (unknown counts 0.5): the value the matcher reads.
   float occupancy(CellIndex c) const { return at(c).occupancy(); }
@@ -66,11 +66,11 @@ class DsGrid {
         out[0] = out[1] = out[2] = out[3] = DsMass::vacuous();
         return;
       }
-      const DsMass* base = &t->cells[static_cast<std::size_t>(local_index(c))];
-      out[0] = base[0];
-      out[1] = base[1];
-      out[2] = base[kTileSize];
-      out[3] = base[kTileSize + 1];
+      const PackedMass* base = &t->cells[static_cast<std::size_t>(local_index(c))];
+      out[0] = base[0].mass();
+      out[1] = base[1].mass();
+      out[2] = base[kTileSize].mass();
+      out[3] = base[kTileSize + 1].mass();
       return;
     }
     out[0] = at(c);
@@ -79,9 +79,21 @@ class DsGrid {
     out[3] = at({c.x + 1, c.y + 1});
   }
 
+  // quad() in the stored units, for readers that need no DsMass.
+  void packed_quad(CellIndex c, PackedMass out[4]) const {
+    out[0] = packed_at(c);
+    out[1] = packed_at({c.x + 1, c.y});
+    out[2] = packed_at({c.x, c.y + 1});
+    out[3] = packed_at({c.x + 1, c.y + 1});
+  }
+  PackedMass packed_at(CellIndex c) const {
+    const Tile* t = find_tile(c);
+    return t ? t->cells[local_index(c)] : PackedMass{};
+  }
+
   // The cells of the tile holding `c` (index them with local_index), or null
   // where nothing was written: for readers that keep a tile across points.
-  const DsMass* tile_cells(CellIndex c) const {
+  const PackedMass* tile_cells(CellIndex c) const {
     const Tile* t = find_tile(c);
     return t ? t->cells.data() : nullptr;
   }
@@ -89,17 +101,19 @@ class DsGrid {
     return ((c.y & (kTileSize - 1)) << kTileBits) | (c.x & (kTileSize - 1));
   }
 
-  // Write access: allocates the tile if needed.
-  DsMass& mutable_at(CellIndex c) {
-    // Inline when the tile exists (insertion writes mostly into existing tiles).
-    if (Tile* t = find_tile(c)) return t->cells[local_index(c)];
-    return get_or_create_tile(c).cells[local_index(c)];
+  // Write access: cell c becomes update(its masses); allocates the tile if needed.
+  template <typename F>
+  void update(CellIndex c, F&& update) {
+    PackedMass& cell = mutable_cell(c);
+    cell = PackedMass::pack(update(cell.mass()));
   }
+  void set(CellIndex c, const DsMass& m) { mutable_cell(c) = PackedMass::pack(m); }
+  void set_packed(CellIndex c, PackedMass m) { mutable_cell(c) = m; }
 
   // The cells of the tile holding `c`, allocated if needed: for writers that
   // keep a tile across cells (a beam crosses dozens of one tile's cells).
   // The pointer stays valid as long as the grid.
-  DsMass* mutable_tile_cells(CellIndex c) {
+  PackedMass* mutable_tile_cells(CellIndex c) {
     if (Tile* t = find_tile(c)) return t->cells.data();
     return get_or_create_tile(c).cells.data();
   }
@@ -126,7 +140,7 @@ class DsGrid {
     return {origin.x + (i & (kTileSize - 1)), origin.y + (i >> kTileBits)};
   }
 
-  // Visits every allocated tile: f(tile_origin_cell, const DsMass* cells[kTileCells]).
+  // Visits every allocated tile: f(tile_origin_cell, const PackedMass* cells[kTileCells]).
   template <typename F>
   void for_each_tile(F&& f) const {
     for (const auto& t : tiles_) f(CellIndex{t->origin.x, t->origin.y}, t->cells.data());
@@ -135,8 +149,14 @@ class DsGrid {
  private:
   struct Tile {
     CellIndex origin;  // index of its lower-left cell
-    std::array<DsMass, kTileCells> cells{};
+    std::array<PackedMass, kTileCells> cells{};
   };
+
+  PackedMass& mutable_cell(CellIndex c) {
+    // Inline when the tile exists (insertion writes mostly into existing tiles).
+    if (Tile* t = find_tile(c)) return t->cells[local_index(c)];
+    return get_or_create_tile(c).cells[local_index(c)];
+  }
 
   // The tile holding `c`, or null (the table holds mutable tiles; const
   // accessors only read through it).

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
+#include "grid/ds_grid.hpp"
 #include "grid/evidence_model.hpp"
 
 namespace dsswarm {
@@ -76,6 +79,42 @@ TEST(EvidenceModel, KeepsMinimumUnknownSoCellsCanBeRevised) {
   // Enough free observations must eventually flip a wall that moved away.
   for (int i = 0; i < 500; ++i) cell = ev.update(cell, ev.pass());
   EXPECT_GT(cell.free, cell.occupied);
+}
+
+TEST(PackedMass, RoundTripsWithinHalfAStepAndStaysAValidMass) {
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j <= 200 - i; ++j) {
+      const DsMass m{static_cast<float>(i) / 200.0f, static_cast<float>(j) / 200.0f};
+      const PackedMass p = PackedMass::pack(m);
+      const DsMass back = p.mass();
+      EXPECT_NEAR(back.occupied, m.occupied, 0.5f / PackedMass::kOne + 1e-7f);
+      EXPECT_NEAR(back.free, m.free, 0.5f / PackedMass::kOne + 1e-7f);
+      EXPECT_LE(std::uint32_t{p.occupied} + p.free, 65535u);
+      EXPECT_EQ(PackedMass::pack(back).occupied, p.occupied);  // stable: re-packing changes nothing
+      EXPECT_EQ(PackedMass::pack(back).free, p.free);
+    }
+  EXPECT_TRUE(PackedMass::pack(DsMass::vacuous()).vacuous());
+  const PackedMass bad = PackedMass::pack({std::numeric_limits<float>::quiet_NaN(), 2.0f});
+  EXPECT_EQ(bad.occupied, 0);
+  EXPECT_EQ(bad.free, 65535);
+}
+
+TEST(PackedMass, CellsUpdatedInAGridFollowTheFloatModel) {
+  // 16-bit storage rounds after every update; the rounding must not add up
+  // over the hundreds of updates a wall cell sees.
+  const EvidenceModel ev;
+  DsGrid grid(0.05);
+  DsMass cell;
+  const auto step = [&](const DsMass& evidence) {
+    cell = ev.update(cell, evidence);
+    grid.update({3, 4}, [&](const DsMass& m) { return ev.update(m, evidence); });
+    EXPECT_NEAR(grid.at({3, 4}).occupied, cell.occupied, 2e-4f);
+    EXPECT_NEAR(grid.at({3, 4}).free, cell.free, 2e-4f);
+  };
+  for (int i = 0; i < 300; ++i) step(ev.hit());
+  for (int i = 0; i < 300; ++i) step(ev.pass());
+  EXPECT_GT(grid.at({3, 4}).free, grid.at({3, 4}).occupied);  // the wall that moved away is revised
+  for (int i = 0; i < 300; ++i) step(i % 3 == 0 ? ev.hit() : ev.pass());
 }
 
 TEST(EvidenceModel, RejectsOutOfRangeValues) {

@@ -33,8 +33,9 @@ struct EvidenceModel {
     const float ua = cell.unknown(), ub = 1.0f - pass_free;
     const float norm = 1.0f - cell.occupied * pass_free;
     if (norm <= 1e-6f) return DsMass::vacuous();
-    const float occ = cell.occupied * ub / norm;
-    const float fr = (cell.free * pass_free + cell.free * ub + ua * pass_free) / norm;
+    const float inv = 1.0f / norm;
+    const float occ = cell.occupied * ub * inv;
+    const float fr = (cell.free * pass_free + cell.free * ub + ua * pass_free) * inv;
     const float o = std::clamp(occ, 0.0f, 1.0f);
     return discounted({o, std::clamp(fr, 0.0f, 1.0f - o)});
   }

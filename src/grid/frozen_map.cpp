@@ -35,13 +35,13 @@ std::vector<std::uint8_t> pack(const DsGrid& grid, std::size_t& blocks) {
   std::vector<CellIndex> origins;
   std::vector<std::uint8_t> occupied, free;
   std::uint8_t o[kCells], f[kCells];
-  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int by = 0; by < per_tile; ++by)
       for (int bx = 0; bx < per_tile; ++bx) {
         bool any = false;
         for (int y = 0; y < FrozenMap::kBlock; ++y)
           for (int x = 0; x < FrozenMap::kBlock; ++x) {
-            const DsMass& m = cells[(by * FrozenMap::kBlock + y) * DsGrid::kTileSize + bx * FrozenMap::kBlock + x];
+            const DsMass m = cells[(by * FrozenMap::kBlock + y) * DsGrid::kTileSize + bx * FrozenMap::kBlock + x].mass();
             const int k = y * FrozenMap::kBlock + x;
             o[k] = encode(m.occupied);
             f[k] = encode(m.free);
@@ -111,7 +111,7 @@ MultiResMap FrozenMap::thaw(const MapConfig& config, const CellIndex* region_min
         const std::uint8_t qf = free[b * kCells + static_cast<std::size_t>(k)];
         if (qo == 0 && qf == 0) continue;
         const float o = decode(qo);
-        grid.mutable_at({origins[b].x + k % kBlock, origins[b].y + k / kBlock}) = {o, std::min(decode(qf), 1.0f - o)};
+        grid.set({origins[b].x + k % kBlock, origins[b].y + k / kBlock}, {o, std::min(decode(qf), 1.0f - o)});
       }
     }
   }

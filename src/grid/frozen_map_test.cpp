@@ -25,9 +25,9 @@ TEST(FrozenMap, ThawsToTheSameCellsWithinItsPrecision) {
   const MultiResMap back = frozen.thaw(map.config());
   std::size_t cells = 0;
   for (int l = 0; l < map.levels(); ++l)
-    map.level(l).for_each_tile([&](CellIndex origin, const DsMass* masses) {
+    map.level(l).for_each_tile([&](CellIndex origin, const PackedMass* masses) {
       for (int i = 0; i < DsGrid::kTileCells; ++i) {
-        const DsMass& m = masses[i];
+        const DsMass m = masses[i].mass();
         const DsMass b = back.level(l).at(DsGrid::tile_cell(origin, i));
         // Square-root scale: the error grows with the mass, 1% of one beam's free mass.
         EXPECT_NEAR(b.occupied, m.occupied, 0.0005 + 0.004 * std::sqrt(m.occupied));

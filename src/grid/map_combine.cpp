@@ -59,7 +59,7 @@ bool source_has_evidence(const DsGrid& source, const PointTransform& to_source, 
 void combine_cells(DsGrid& target, const DsGrid& source, const PointTransform& to_source, CellIndex lo, CellIndex hi,
                    const EvidenceModel& evidence) {
   const double tr = target.resolution();
-  DsMass* cells = nullptr;
+  PackedMass* cells = nullptr;
   for (std::int32_t y = lo.y; y <= hi.y; ++y) {
     const double wy = (y + 0.5) * tr;
     for (std::int32_t x = lo.x; x <= hi.x; ++x) {
@@ -67,8 +67,8 @@ void combine_cells(DsGrid& target, const DsGrid& source, const PointTransform& t
       const DsMass m = interpolated_masses(source, sp.x(), sp.y());
       if (m.occupied + m.free < kNothing) continue;
       if (!cells) cells = target.mutable_tile_cells(lo);
-      DsMass& cell = cells[DsGrid::local_index({x, y})];
-      cell = evidence.update(cell, m);
+      PackedMass& cell = cells[DsGrid::local_index({x, y})];
+      cell = PackedMass::pack(evidence.update(cell.mass(), m));
     }
   }
 }
@@ -114,12 +114,12 @@ void combine_aligned(MultiResMap& target, const MultiResMap& source, const TileB
   for (int level = 0; level < target.levels(); ++level) {
     DsGrid& t = target.mutable_level(level);
     const double tile_height = DsGrid::kTileSize * t.resolution();
-    source.level(level).for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    source.level(level).for_each_tile([&](CellIndex origin, const PackedMass* cells) {
       if (!band.holds(origin.y >> DsGrid::kTileBits, tile_height)) return;
       for (int i = 0; i < DsGrid::kTileCells; ++i) {
-        if (cells[i].occupied + cells[i].free < kNothing) continue;
-        DsMass& cell = t.mutable_at(DsGrid::tile_cell(origin, i));
-        cell = evidence.update(cell, cells[i]);
+        const DsMass m = cells[i].mass();
+        if (m.occupied + m.free < kNothing) continue;
+        t.update(DsGrid::tile_cell(origin, i), [&](const DsMass& cell) { return evidence.update(cell, m); });
       }
     });
   }

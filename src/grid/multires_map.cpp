@@ -17,8 +17,27 @@ void MapConfig::validate() const {
   evidence.validate();
 }
 
+namespace {
+
+// The state repeated passes reach from a vacuous cell, if they reach one that
+// a pass leaves unchanged (the discount holds free mass below 1, so they do
+// within a few hundred); otherwise a state no cell holds (occupied + free > 1).
+PackedMass pass_fixed_point(const EvidenceModel& ev) {
+  constexpr int kMaxPasses = 100000;
+  PackedMass s{};
+  for (int i = 0; i < kMaxPasses; ++i) {
+    const PackedMass next = PackedMass::pack_valid(ev.update_passed(s.unguarded_mass()));
+    if (next == s) return s;
+    s = next;
+  }
+  return {65535, 65535};
+}
+
+}  // namespace
+
 MultiResMap::MultiResMap(const MapConfig& config) : config_(config) {
   config_.validate();
+  pass_fixed_point_ = pass_fixed_point(config_.evidence);
   double res = config_.resolution;
   for (int i = 0; i < config_.levels; ++i, res *= 2.0) grids_.emplace_back(res);
 }
@@ -42,19 +61,31 @@ class LevelWriter {
 
   template <class Update>
   void apply(CellIndex c, Update&& update) {
+    select_tile(c);
+    const int i = DsGrid::local_index(c);
+    for (PackedMass* cells : cells_) cells[i] = PackedMass::pack_valid(update(cells[i].unguarded_mass()));
+  }
+
+  // A beam's pass: apply(c, update_passed), minus the cells it leaves as they are.
+  void pass(CellIndex c, const EvidenceModel& ev, PackedMass fixed_point) {
+    select_tile(c);
+    const int i = DsGrid::local_index(c);
+    for (PackedMass* cells : cells_)
+      if (!(cells[i] == fixed_point)) cells[i] = PackedMass::pack_valid(ev.update_passed(cells[i].unguarded_mass()));
+  }
+
+ private:
+  void select_tile(CellIndex c) {
     const std::int32_t tx = c.x >> DsGrid::kTileBits, ty = c.y >> DsGrid::kTileBits;
     if (tx != tile_x_ || ty != tile_y_) {
       for (std::size_t k = 0; k < grids_.size(); ++k) cells_[k] = grids_[k]->mutable_tile_cells(c);
       tile_x_ = tx;
       tile_y_ = ty;
     }
-    const int i = DsGrid::local_index(c);
-    for (DsMass* cells : cells_) cells[i] = update(cells[i]);
   }
 
- private:
   std::vector<DsGrid*> grids_;
-  std::vector<DsMass*> cells_;  // the current tile's cells, per map
+  std::vector<PackedMass*> cells_;  // the current tile's cells, per map
   // No tile yet: no cell's tile coordinate is this low.
   std::int32_t tile_x_ = std::numeric_limits<std::int32_t>::min(), tile_y_ = tile_x_;
 };
@@ -77,6 +108,7 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
 
   const EvidenceModel& ev = config.evidence;
   const DsMass hit = ev.hit();
+  const PackedMass fixed_point = maps.front()->pass_fixed_point_;
   for (std::size_t level = 0; level < maps.front()->grids_.size(); ++level) {
     const DsGrid& grid = maps.front()->grids_[level];
     LevelWriter writer(maps, level);
@@ -95,7 +127,7 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
         // cell never gets free evidence, whatever the margin.
         const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
         traverse_ray(origin, end, grid.resolution(),
-                     [&](CellIndex c) { writer.apply(c, [&ev](const DsMass& m) { return ev.update_passed(m); }); });
+                     [&](CellIndex c) { writer.pass(c, ev, fixed_point); });
       }
     }
     const bool splat = level > 0 || config.splat_fine_hits;

@@ -77,6 +77,10 @@ class MultiResMap {
  private:
   MapConfig config_;
   std::vector<DsGrid> grids_;
+  // The stored cell a beam's pass leaves as it is (free at its cap, nothing
+  // occupied), where passes alone lead: open space, crossed by most beams.
+  // Insertion skips it; the result is the same to the bit.
+  PackedMass pass_fixed_point_;
 };
 
 }  // namespace dsswarm

@@ -63,14 +63,15 @@ BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_wind
   base.width = hi.x - lo.x;
   base.height = hi.y - lo.y;
   base.values.assign(static_cast<std::size_t>(base.width) * static_cast<std::size_t>(base.height), kUnknown);
-  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     if (origin.x >= hi.x || origin.y >= hi.y || origin.x + DsGrid::kTileSize <= lo.x ||
         origin.y + DsGrid::kTileSize <= lo.y)
       return;
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
       const CellIndex c = DsGrid::tile_cell(origin, i);
       if (c.x < lo.x || c.y < lo.y || c.x >= hi.x || c.y >= hi.y) continue;
-      const auto v = static_cast<std::uint8_t>(kZero * (1.0f + cells[i].occupied - cells[i].free) + 0.5f);
+      const DsMass m = cells[i].mass();
+      const auto v = static_cast<std::uint8_t>(kZero * (1.0f + m.occupied - m.free) + 0.5f);
       base.values[static_cast<std::size_t>(c.y - lo.y) * static_cast<std::size_t>(base.width) +
                   static_cast<std::size_t>(c.x - lo.x)] = v;
     }

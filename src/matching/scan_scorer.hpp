@@ -5,6 +5,7 @@
 // point on a surely occupied cell). Occupancy is interpolated bilinearly
 // between the four nearest cell centres, which makes the score continuous in
 // the pose and gives the matcher a slope to climb within a cell.
+#include <array>
 #include <vector>
 
 #include "geometry/pose2.hpp"
@@ -16,10 +17,11 @@ namespace dsswarm {
 
 // One scan made ready to score many poses against one grid: the matcher's
 // inner loop. The points are kept in the grid's cell units with weights that
-// sum to 1. A pose is scored in two passes: all points are placed first (a
+// sum to 1. A pose is scored in three passes: all points are placed (a
 // rotation and a floor each, written so the compiler does several per
-// instruction), then each is read bilinearly and weighted; consecutive points
-// mostly fall in one tile, whose lookup is kept from the point before.
+// instruction); the four stored cells around each are fetched (consecutive
+// points mostly fall in one tile, whose lookup is kept from the point
+// before); then all are interpolated and weighted, again several at a time.
 // Not for concurrent use: scoring writes the scorer's scratch arrays.
 class ScanScorer {
  public:
@@ -41,6 +43,10 @@ class ScanScorer {
   double sum(const Pose2& pose) const;
   // Each point's bilinear block and offsets at `pose`, into the scratch arrays.
   void place(const Pose2& pose) const;
+  // The stored masses of each point's block (DsGrid::quad order), into the
+  // scratch arrays: the only pass that looks cells up.
+  template <bool kWithFree>
+  void gather() const;
 
   const DsGrid* grid_;
   std::vector<float> x_, y_;  // the points, in cells
@@ -48,6 +54,8 @@ class ScanScorer {
   float unknown_value_;
   mutable std::vector<std::int32_t> ix_, iy_;  // scratch for place()
   mutable std::vector<float> ax_, ay_;
+  mutable std::vector<std::int32_t> tile_, local_;  // each point's tile key, index in it (-1: block straddles tiles)
+  mutable std::array<std::vector<std::int32_t>, 4> occupied_, free_;  // scratch for gather()
 };
 
 // Weighted mean occupancy under every `stride`-th point of `points` at `pose`.

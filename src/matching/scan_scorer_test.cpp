@@ -16,7 +16,7 @@ DsGrid random_grid(std::mt19937& rng) {
     for (int x = -90; x < 90; ++x) {
       if (u(rng) < 0.3f) continue;  // some cells stay vacuous
       const float o = u(rng);
-      grid.mutable_at({x, y}) = {o, (1.0f - o) * u(rng)};
+      grid.set({x, y}, {o, (1.0f - o) * u(rng)});
     }
   return grid;
 }
@@ -78,7 +78,7 @@ TEST(ScanScorer, PointsOutsideTheMapScoreTheVacuousValue) {
 
 TEST(ScanScorer, NoWeightScoresZero) {
   DsGrid grid(0.05);
-  grid.mutable_at({0, 0}) = {0.9f, 0.0f};
+  grid.set({0, 0}, {0.9f, 0.0f});
   std::vector<ScanPoint> points(3);
   for (ScanPoint& p : points) p.weight = 0.0f;
   EXPECT_EQ(ScanScorer(grid, points).score(Pose2()), 0.0);

@@ -27,8 +27,8 @@ AgentStream drive(const std::string& name, const World& world, const Pose2& from
 
 std::size_t obstacle_cells(const DsGrid& grid) {
   std::size_t n = 0;
-  grid.for_each_tile([&](CellIndex, const DsMass* cells) {
-    for (int i = 0; i < DsGrid::kTileCells; ++i) n += cells[i].occupied > 0.3f ? 1 : 0;
+  grid.for_each_tile([&](CellIndex, const PackedMass* cells) {
+    for (int i = 0; i < DsGrid::kTileCells; ++i) n += cells[i].mass().occupied > 0.3f ? 1 : 0;
   });
   return n;
 }

@@ -147,10 +147,10 @@ TEST(LoopClosing, NodesHangOnTheirSubmapsAndTheGlobalMapIsTheSubmapsAtTheirPoses
     combine_into(expected, s->finished ? s->frozen.thaw(MapConfig{}) : s->map, closer.submap_cells_pose(s->id));
   const DsGrid& fine = slam.own_map().finest();
   std::size_t compared = 0;
-  expected.finest().for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  expected.finest().for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells; i += 11) {
-      ASSERT_NEAR(fine.at(DsGrid::tile_cell(origin, i)).occupied, cells[i].occupied, 1e-5f);
-      ASSERT_NEAR(fine.at(DsGrid::tile_cell(origin, i)).free, cells[i].free, 1e-5f);
+      ASSERT_NEAR(fine.at(DsGrid::tile_cell(origin, i)).occupied, cells[i].mass().occupied, 1e-5f);
+      ASSERT_NEAR(fine.at(DsGrid::tile_cell(origin, i)).free, cells[i].mass().free, 1e-5f);
       ++compared;
     }
   });
@@ -170,10 +170,10 @@ TEST(LoopClosing, LocalizingInASavedMapLeavesItUnchanged) {
   const DsGrid& before = saved.finest();
   const DsGrid& after = localizing.map().finest();
   EXPECT_EQ(after.tiles_allocated(), before.tiles_allocated());
-  before.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  before.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells; i += 13) {
-      ASSERT_EQ(after.at(DsGrid::tile_cell(origin, i)).occupied, cells[i].occupied);
-      ASSERT_EQ(after.at(DsGrid::tile_cell(origin, i)).free, cells[i].free);
+      ASSERT_EQ(after.at(DsGrid::tile_cell(origin, i)).occupied, cells[i].mass().occupied);
+      ASSERT_EQ(after.at(DsGrid::tile_cell(origin, i)).free, cells[i].mass().free);
     }
   });
   // It localizes: started 14 cm and 2 degrees off, it follows the mapping

@@ -93,13 +93,13 @@ TEST(Submaps, TheGlobalMapIsTheCombinationOfTheSubmapsAtTheirPoses) {
     combine_into(expected, s->finished ? s->frozen.thaw(MapConfig{}) : s->map, pose_of(s->id));
   for (int l = 0; l < global.levels(); ++l) {
     EXPECT_EQ(global.level(l).tiles_allocated(), expected.level(l).tiles_allocated());
-    expected.level(l).for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    expected.level(l).for_each_tile([&](CellIndex origin, const PackedMass* cells) {
       for (int i = 0; i < DsGrid::kTileCells; i += 7) {
         const DsMass g = global.level(l).at(DsGrid::tile_cell(origin, i));
         // Identity poses are combined cell by cell, others resampled: equal
         // but for the bilinear weights' rounding.
-        ASSERT_NEAR(g.occupied, cells[i].occupied, 1e-5f);
-        ASSERT_NEAR(g.free, cells[i].free, 1e-5f);
+        ASSERT_NEAR(g.occupied, cells[i].mass().occupied, 1e-5f);
+        ASSERT_NEAR(g.free, cells[i].mass().free, 1e-5f);
       }
     });
   }
@@ -136,9 +136,9 @@ TEST(Submaps, TheGlobalMapComposedInTwoBandsIsTheSameToTheBit) {
   const MultiResMap two = combine_submaps(MapConfig{}, submaps.all(), pose_of, &helper);
   for (int l = 0; l < one.levels(); ++l) {
     ASSERT_EQ(two.level(l).tiles_allocated(), one.level(l).tiles_allocated());
-    one.level(l).for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    one.level(l).for_each_tile([&](CellIndex origin, const PackedMass* cells) {
       for (int i = 0; i < DsGrid::kTileCells; ++i) {
-        const DsMass m = two.level(l).at(DsGrid::tile_cell(origin, i));
+        const PackedMass m = two.level(l).packed_at(DsGrid::tile_cell(origin, i));
         ASSERT_EQ(m.occupied, cells[i].occupied);
         ASSERT_EQ(m.free, cells[i].free);
       }

@@ -9,7 +9,7 @@ namespace {
 
 std::shared_ptr<const MultiResMap> map_with_cell(CellIndex c, float occupied) {
   auto m = std::make_shared<MultiResMap>();
-  m->mutable_level(0).mutable_at(c) = {occupied, 0.0f};
+  m->mutable_level(0).set(c, {occupied, 0.0f});
   return m;
 }
 

@@ -12,10 +12,10 @@ namespace {
 
 bool same_cells(const DsGrid& a, const DsGrid& b) {
   bool same = a.tiles_allocated() == b.tiles_allocated();
-  a.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  a.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells && same; ++i) {
       const CellIndex c = DsGrid::tile_cell(origin, i);
-      same = b.at(c).occupied == cells[i].occupied && b.at(c).free == cells[i].free;
+      same = b.at(c).occupied == cells[i].mass().occupied && b.at(c).free == cells[i].mass().free;
     }
   });
   return same;
@@ -23,14 +23,15 @@ bool same_cells(const DsGrid& a, const DsGrid& b) {
 
 TEST(MapMerge, AtIdentityEveryCellIsTheDempsterCombination) {
   MultiResMap a, b;
-  a.mutable_level(0).mutable_at({3, 4}) = {0.5f, 0.1f};
-  b.mutable_level(0).mutable_at({3, 4}) = {0.3f, 0.2f};
-  b.mutable_level(0).mutable_at({-20, 7}) = {0.0f, 0.6f};
+  a.mutable_level(0).set({3, 4}, {0.5f, 0.1f});
+  b.mutable_level(0).set({3, 4}, {0.3f, 0.2f});
+  b.mutable_level(0).set({-20, 7}, {0.0f, 0.6f});
   combine_into(a, b, Pose2{});
   const DsMass expected = a.config().evidence.update({0.5f, 0.1f}, {0.3f, 0.2f});
-  EXPECT_NEAR(a.finest().at({3, 4}).occupied, expected.occupied, 1e-6);
-  EXPECT_NEAR(a.finest().at({3, 4}).free, expected.free, 1e-6);
-  EXPECT_NEAR(a.finest().at({-20, 7}).free, 0.6f, 1e-6);
+  // Cells hold 16-bit masses: the two inputs and the result round by half a step each.
+  EXPECT_NEAR(a.finest().at({3, 4}).occupied, expected.occupied, 3e-5);
+  EXPECT_NEAR(a.finest().at({3, 4}).free, expected.free, 3e-5);
+  EXPECT_NEAR(a.finest().at({-20, 7}).free, 0.6f, 1e-5);
   EXPECT_EQ(a.finest().at({100, 100}).occupied, 0.0f);  // nothing known there
 }
 

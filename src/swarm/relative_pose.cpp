@@ -120,12 +120,12 @@ std::vector<ScanPoint> surroundings_points(const MultiResMap& map, const Pose2& 
   const Pose2 to_base = robot_pose.inverse();
   std::vector<ScanPoint> all;
   const double r2 = radius * radius;
-  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     const Eigen::Vector2d corner = grid.cell_center(origin);
     const double reach = radius + DsGrid::kTileSize * grid.resolution() * 1.5;
     if ((corner - robot_pose.translation()).squaredNorm() > reach * reach) return;
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
-      const DsMass& m = cells[i];
+      const DsMass m = cells[i].mass();
       if (m.occupied < 0.5f || m.occupied <= m.free) continue;
       const Eigen::Vector2d w = grid.cell_center(DsGrid::tile_cell(origin, i));
       if ((w - robot_pose.translation()).squaredNorm() > r2) continue;

@@ -28,10 +28,10 @@ std::vector<LaserScan> drive(const Pose2& from, const Pose2& to, int scans, std:
 
 double largest_difference(const DsGrid& a, const DsGrid& b) {
   double worst = 0.0;
-  a.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+  a.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
       const DsMass m = b.at(DsGrid::tile_cell(origin, i));
-      worst = std::max({worst, std::abs(double{m.occupied} - cells[i].occupied), std::abs(double{m.free} - cells[i].free)});
+      worst = std::max({worst, std::abs(double{m.occupied} - cells[i].mass().occupied), std::abs(double{m.free} - cells[i].mass().free)});
     }
   });
   return worst;

@@ -43,23 +43,16 @@ constexpr double kMinResolution = 0.005, kMaxResolution = 2.0;
 
 [[noreturn]] void fail(const std::string& name, const std::string& what) { throw InputError(name + ": " + what); }
 
-std::uint16_t quantize(float mass) {
-  if (!(mass > 0.0f)) return 0;  // also NaN
-  if (mass >= 1.0f) return 65535;
-  return static_cast<std::uint16_t>(std::lround(static_cast<double>(mass) * 65535.0));
-}
-
 // ---- encoding -------------------------------------------------------------
 
 void encode_level(ByteWriter& w, const DsGrid& grid) {
   struct StoredTile {
     CellIndex origin;
-    const DsMass* cells;
+    const PackedMass* cells;
   };
   std::vector<StoredTile> tiles;
-  grid.for_each_tile([&](CellIndex origin, const DsMass* cells) {
-    const bool any = std::any_of(cells, cells + kTileCells,
-                                 [](const DsMass& m) { return quantize(m.occupied) != 0 || quantize(m.free) != 0; });
+  grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
+    const bool any = std::any_of(cells, cells + kTileCells, [](const PackedMass& m) { return !m.vacuous(); });
     if (any) tiles.push_back({origin, cells});
   });
   // Tiles in raster order: the same map always gives the same bytes, and
@@ -73,13 +66,10 @@ void encode_level(ByteWriter& w, const DsGrid& grid) {
     w.i32(t.origin.y >> DsGrid::kTileBits);
   }
   for (const StoredTile& t : tiles)
-    for (std::size_t i = 0; i < kTileCells; ++i) w.u16(quantize(t.cells[i].occupied));
+    for (std::size_t i = 0; i < kTileCells; ++i) w.u16(t.cells[i].occupied);
+  // The grid's own 16-bit cells: stored as they are, free <= 1 - occupied holds.
   for (const StoredTile& t : tiles)
-    for (std::size_t i = 0; i < kTileCells; ++i) {
-      // Clamped so that free ≤ 1 − occupied holds for the dequantized pair too.
-      const std::uint16_t occupied = quantize(t.cells[i].occupied);
-      w.u16(std::min<std::uint16_t>(quantize(t.cells[i].free), static_cast<std::uint16_t>(65535 - occupied)));
-    }
+    for (std::size_t i = 0; i < kTileCells; ++i) w.u16(t.cells[i].free);
 }
 
 void encode_levels(ByteWriter& w, const MultiResMap& map) {
@@ -192,8 +182,7 @@ void decode_level(ByteReader& r, DsGrid& grid, const std::string& name, const st
                        ") has occupied + free mass above 1 (" + std::to_string(qo) + " + " + std::to_string(qf) +
                        " of 65535)");
       if (qo == 0 && qf == 0) continue;  // vacuous: nothing to store
-      const float o = static_cast<float>(qo) / 65535.0f;
-      grid.mutable_at(cell) = DsMass{o, std::min(static_cast<float>(qf) / 65535.0f, 1.0f - o)};
+      grid.set_packed(cell, {qo, qf});
     }
   }
 }

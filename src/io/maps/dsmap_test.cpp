@@ -72,15 +72,15 @@ void expect_same_cells(const DsGrid& a, const DsGrid& b, const std::string& wher
   constexpr float kStep = 1.0f / 65535.0f + 1e-7f;
   int bad = 0;
   auto compare = [&](const DsGrid& from, const DsGrid& to) {
-    from.for_each_tile([&](CellIndex origin, const DsMass* cells) {
+    from.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
       for (int i = 0; i < DsGrid::kTileCells; ++i) {
         const CellIndex c{origin.x + (i % DsGrid::kTileSize), origin.y + (i / DsGrid::kTileSize)};
         const DsMass m = to.at(c);
-        if (std::abs(cells[i].occupied - m.occupied) > kStep || std::abs(cells[i].free - m.free) > kStep ||
-            m.unknown() < 0.0f || cells[i].unknown() < 0.0f)
+        if (std::abs(cells[i].mass().occupied - m.occupied) > kStep || std::abs(cells[i].mass().free - m.free) > kStep ||
+            m.unknown() < 0.0f || cells[i].mass().unknown() < 0.0f)
           if (++bad <= 3)
-            ADD_FAILURE() << where << " cell (" << c.x << ", " << c.y << "): " << cells[i].occupied << "/"
-                          << cells[i].free << " vs " << m.occupied << "/" << m.free;
+            ADD_FAILURE() << where << " cell (" << c.x << ", " << c.y << "): " << cells[i].mass().occupied << "/"
+                          << cells[i].mass().free << " vs " << m.occupied << "/" << m.free;
       }
     });
   };
@@ -213,10 +213,10 @@ TEST(Dsmap, EmptySnapshotAndEmptyMapRoundTrip) {
 TEST(Dsmap, SkipsVacuousTilesAndKeepsMassesValid) {
   auto map = std::make_shared<MultiResMap>(MapConfig{0.05, 1, {}, false, false});
   DsGrid& g = map->mutable_level(0);
-  g.mutable_at({1000, 1000}) = DsMass::vacuous();                   // allocated, vacuous: not stored
-  g.mutable_at({0, 0}) = DsMass{0.7f, 0.3f};                        // no unknown mass at all
-  g.mutable_at({1, 0}) = DsMass{0.33333334f, 0.66666666f};          // rounds up on both
-  g.mutable_at({2, 0}) = DsMass{1.0f, 0.0f};
+  g.set({1000, 1000}, DsMass::vacuous());                   // allocated, vacuous: not stored
+  g.set({0, 0}, DsMass{0.7f, 0.3f});                        // no unknown mass at all
+  g.set({1, 0}, DsMass{0.33333334f, 0.66666666f});          // rounds up on both
+  g.set({2, 0}, DsMass{1.0f, 0.0f});
   MapSnapshot s;
   s.layers.push_back({"r", 1, Pose2(), 0, map, {}});
   const MapSnapshot back = decode_dsmap(encode_dsmap(s), "mem");
@@ -484,7 +484,7 @@ TEST(Dsmap, RealisticMapSizeAndRoundTrip) {
               static_cast<unsigned long long>(payload), static_cast<double>(payload) / static_cast<double>(bytes.size()),
               std::chrono::duration<double, std::milli>(t1 - t0).count(),
               std::chrono::duration<double, std::milli>(t2 - t1).count());
-  EXPECT_LT(per_cell, 1.0);  // 8 bytes per cell in memory; the file must be far smaller
+  EXPECT_LT(per_cell, 1.0);  // 4 bytes per cell in memory; the file must be far smaller
 }
 
 }  // namespace
