@@ -43,7 +43,8 @@ std::unordered_set<std::int64_t> known_world_cells(const DsGrid& grid, const Pos
   std::unordered_set<std::int64_t> out;
   grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int i = 0; i < DsGrid::kTileCells; ++i) {
-      if (cells[i].mass().occupied + cells[i].mass().free < kKnownMass) continue;
+      const DsMass m = cells[i].mass();
+      if (m.occupied + m.free < kKnownMass) continue;
       const Eigen::Vector2d w = frame_in_world * grid.cell_center(DsGrid::tile_cell(origin, i));
       const auto x = static_cast<std::int64_t>(std::floor(w.x() / kCoverageCell));
       const auto y = static_cast<std::int64_t>(std::floor(w.y() / kCoverageCell));

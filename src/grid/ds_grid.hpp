@@ -48,10 +48,7 @@ class DsGrid {
   }
 
   // Read access; cells never written are vacuous (all unknown).
-  DsMass at(CellIndex c) const {
-    const Tile* t = find_tile(c);
-    return t ? t->cells[local_index(c)].mass() : DsMass::vacuous();
-  }
+  DsMass at(CellIndex c) const { return packed_at(c).mass(); }
   // Occupancy in [0, 1] (unknown counts 0.5): the value the matcher reads.
   float occupancy(CellIndex c) const { return at(c).occupancy(); }
 
@@ -59,28 +56,26 @@ class DsGrid {
   // (c+x), (c+y), (c+x+y). One tile lookup when the block lies in one tile
   // (63 times out of 64): the matcher's bilinear interpolation lives on this.
   void quad(CellIndex c, DsMass out[4]) const {
+    PackedMass packed[4];
+    packed_quad(c, packed);
+    for (int k = 0; k < 4; ++k) out[k] = packed[k].mass();
+  }
+  // quad() in the stored units, for readers that need no DsMass.
+  void packed_quad(CellIndex c, PackedMass out[4]) const {
     const int lx = c.x & (kTileSize - 1), ly = c.y & (kTileSize - 1);
     if (lx < kTileSize - 1 && ly < kTileSize - 1) {
       const Tile* t = find_tile(c);
       if (!t) {
-        out[0] = out[1] = out[2] = out[3] = DsMass::vacuous();
+        out[0] = out[1] = out[2] = out[3] = PackedMass{};
         return;
       }
       const PackedMass* base = &t->cells[static_cast<std::size_t>(local_index(c))];
-      out[0] = base[0].mass();
-      out[1] = base[1].mass();
-      out[2] = base[kTileSize].mass();
-      out[3] = base[kTileSize + 1].mass();
+      out[0] = base[0];
+      out[1] = base[1];
+      out[2] = base[kTileSize];
+      out[3] = base[kTileSize + 1];
       return;
     }
-    out[0] = at(c);
-    out[1] = at({c.x + 1, c.y});
-    out[2] = at({c.x, c.y + 1});
-    out[3] = at({c.x + 1, c.y + 1});
-  }
-
-  // quad() in the stored units, for readers that need no DsMass.
-  void packed_quad(CellIndex c, PackedMass out[4]) const {
     out[0] = packed_at(c);
     out[1] = packed_at({c.x + 1, c.y});
     out[2] = packed_at({c.x, c.y + 1});

@@ -31,9 +31,9 @@ struct PackedMass {
   constexpr bool vacuous() const { return occupied == 0 && free == 0; }
   constexpr bool operator==(const PackedMass&) const = default;
   constexpr DsMass mass() const {
-    const float o = static_cast<float>(occupied) * (1.0f / kOne);
-    // min: float rounding must not make occupied + free exceed 1.
-    return {o, std::min(static_cast<float>(free) * (1.0f / kOne), 1.0f - o)};
+    DsMass m = unguarded_mass();
+    m.free = std::min(m.free, 1.0f - m.occupied);  // float rounding must not make the sum exceed 1
+    return m;
   }
   // For insertion's read-update-write of a cell: the update takes slightly
   // invalid masses (a sum 1 ulp above 1) and returns valid ones, so neither
@@ -48,10 +48,8 @@ struct PackedMass {
   }
   static constexpr PackedMass pack(const DsMass& m) {
     // max/min in this order map NaN to 0 and compile to two instructions.
-    const auto q = [](float v) { return static_cast<std::uint32_t>(std::min(std::max(0.0f, v), 1.0f) * kOne + 0.5f); };
-    const std::uint32_t o = q(m.occupied);
-    const std::uint32_t f = std::min(q(m.free), 65535u - o);
-    return {static_cast<std::uint16_t>(o), static_cast<std::uint16_t>(f)};
+    const auto unit = [](float v) { return std::min(std::max(0.0f, v), 1.0f); };
+    return pack_valid({unit(m.occupied), unit(m.free)});
   }
 };
 
