@@ -102,10 +102,15 @@ struct LiveScanSource::Impl {
     const auto at = std::upper_bound(odometry.begin(), odometry.end(), stamp,
                                      [](double t, const OdometrySample& p) { return t < p.stamp; });
     odometry.insert(at, {stamp, pose});
-    while (odometry.size() > config.max_odometry_poses ||
-           (odometry.size() > 2 && odometry.front().stamp < odometry.back().stamp - config.odometry_history)) {
-      odometry.pop_front();
-    }
+    // Poses older than the history go, except those a waiting scan still
+    // needs: a consumer that falls behind the stream (a busy machine, a log
+    // played fast) must not find its scans' odometry gone.
+    const double oldest_wanted = pending.empty() ? odometry.back().stamp : pending.front().scan.timestamp;
+    const auto expired = [&] {
+      return odometry.size() > 2 && odometry.front().stamp < odometry.back().stamp - config.odometry_history &&
+             odometry[1].stamp <= oldest_wanted;
+    };
+    while (odometry.size() > config.max_odometry_poses || expired()) odometry.pop_front();
   }
 
   void add_transforms(const ros::TFMessage& msg, bool is_static) {

@@ -185,6 +185,47 @@ TEST(LiveScanSource, ABackwardPlayedStreamGetsEachScansOwnOdometry) {
   EXPECT_EQ(input.stats().scans_without_odometry, 0u);
 }
 
+// A consumer far behind the stream (a busy machine, a log played fast): the
+// scans it has yet to take still find their odometry, though the stream has
+// run on by more than the odometry history since.
+TEST(LiveScanSource, AConsumerFarBehindStillGetsEachScansOdometry) {
+  Participant robot(loopback_config());
+  Participant agent(loopback_config());
+  LiveInputConfig config = input_config();
+  config.queue_capacity = 64;
+  config.odometry_history = 0.5;  // s of scan time; the stream below spans 3 s
+  config.wait_for_odometry = 2.0;
+  LiveScanSource input(agent, config);
+  Topic<ros::Odometry> odom_topic(robot, ros_topic_name(config.ns, "odom"));
+  Writer<ros::Odometry> odom(odom_topic, ros_default(100));
+  Topic<ros::LaserScan> scan_topic(robot, ros_topic_name(config.ns, "scan"));
+  Writer<ros::LaserScan> scan(scan_topic, ros_default(100));
+  ASSERT_TRUE(odom.wait_for_readers(1, kTimeout));
+  ASSERT_TRUE(scan.wait_for_readers(1, kTimeout));
+
+  constexpr int kScans = 30;
+  const std::string base = "base_link";
+  std::vector<LaserScan> played;
+  for (int i = 0; i < kScans; ++i) played.push_back(make_scan(kStart + 0.1 * i, i));
+  for (const LaserScan& s : played) {
+    scan.write(to_ros_scan(s, base));
+    ros::Odometry o{};
+    o.header.stamp = to_ros_time(s.timestamp);
+    o.child_frame_id = borrow(base);
+    o.pose.pose = to_ros_pose(*s.odometry);
+    odom.write(o);
+  }
+  std::this_thread::sleep_for(200ms);  // all of it has arrived before the first scan is taken
+  for (const LaserScan& want : played) {
+    const std::optional<LaserScan> got = input.next(kTimeout);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_NEAR(got->timestamp, want.timestamp, 1e-6);
+    ASSERT_TRUE(got->odometry.has_value()) << "scan at " << want.timestamp - kStart;
+    expect_pose_near(*got->odometry, *want.odometry, 1e-9);
+  }
+  EXPECT_EQ(input.stats().scans_without_odometry, 0u);
+}
+
 TEST(LiveScanSource, OdometryAndLaserMountFromTfThroughIntermediateFrames) {
   Participant robot(loopback_config());
   Participant agent(loopback_config());
