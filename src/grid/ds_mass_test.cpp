@@ -140,5 +140,22 @@ TEST(EvidenceModel, PassedUpdateEqualsTheGeneralUpdateToTheBit) {
   EXPECT_EQ(compared, 1326);
 }
 
+// Insertion's shortcut for open space must change nothing: every stored
+// free mass, under the default model and one that caps early.
+TEST(EvidenceModel, PassedFreeIsTheGeneralPassToTheBit) {
+  EvidenceModel capped_early;
+  capped_early.pass_free = 0.3f;
+  capped_early.min_unknown = 0.1f;
+  for (const EvidenceModel& ev : {EvidenceModel{}, capped_early}) {
+    int differing = 0;
+    for (std::uint32_t f = 0; f <= 65535; ++f) {
+      const PackedMass cell{0, static_cast<std::uint16_t>(f)};
+      const PackedMass general = PackedMass::pack_valid(ev.update_passed(cell.unguarded_mass()));
+      if (general.occupied != 0 || general.free != ev.passed_free(cell.free)) ++differing;
+    }
+    EXPECT_EQ(differing, 0) << "pass_free " << ev.pass_free;
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm

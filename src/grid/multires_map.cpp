@@ -70,8 +70,12 @@ class LevelWriter {
   void pass(CellIndex c, const EvidenceModel& ev, PackedMass fixed_point) {
     select_tile(c);
     const int i = DsGrid::local_index(c);
-    for (PackedMass* cells : cells_)
-      if (!(cells[i] == fixed_point)) cells[i] = PackedMass::pack_valid(ev.update_passed(cells[i].unguarded_mass()));
+    for (PackedMass* cells : cells_) {
+      PackedMass& cell = cells[i];
+      if (cell == fixed_point) continue;
+      if (cell.occupied == 0) cell.free = ev.passed_free(cell.free);
+      else cell = PackedMass::pack_valid(ev.update_passed(cell.unguarded_mass()));
+    }
   }
 
  private:
