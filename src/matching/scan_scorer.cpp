@@ -81,25 +81,39 @@ void ScanScorer::gather() const {
   std::int32_t current = tile_[0];
   const PackedMass* cells = grid_->tile_cells({ix_[0], iy_[0]});
   if (!cells) cells = kNothing.data();
-  PackedMass q[4];
+  // Plain pointers: the compiler then keeps them in registers, not reloading
+  // each array's from its vector for every store.
+  std::int32_t* const occupied[4] = {occupied_[0].data(), occupied_[1].data(), occupied_[2].data(),
+                                     occupied_[3].data()};
+  std::int32_t* const free[4] = {free_[0].data(), free_[1].data(), free_[2].data(), free_[3].data()};
+  const std::int32_t* const tile = tile_.data();
+  const std::int32_t* const local = local_.data();
   for (std::size_t i = 0; i < n; ++i) {
-    if (local_[i] >= 0) {  // the 2×2 block lies in one tile
-      if (tile_[i] != current) {
-        current = tile_[i];
-        cells = grid_->tile_cells({ix_[i], iy_[i]});
-        if (!cells) cells = kNothing.data();
-      }
-      const PackedMass* c = cells + local_[i];
-      q[0] = c[0];
-      q[1] = c[1];
-      q[2] = c[DsGrid::kTileSize];
-      q[3] = c[DsGrid::kTileSize + 1];
-    } else {
+    if (local[i] < 0) {  // the 2×2 block straddles tiles
+      PackedMass q[4];
       grid_->packed_quad({ix_[i], iy_[i]}, q);
+      for (std::size_t j = 0; j < 4; ++j) {
+        occupied[j][i] = q[j].occupied;
+        if constexpr (kWithFree) free[j][i] = q[j].free;
+      }
+      continue;
     }
-    for (std::size_t j = 0; j < 4; ++j) {
-      occupied_[j][i] = q[j].occupied;
-      if constexpr (kWithFree) free_[j][i] = q[j].free;
+    if (tile[i] != current) {
+      current = tile[i];
+      cells = grid_->tile_cells({ix_[i], iy_[i]});
+      if (!cells) cells = kNothing.data();
+    }
+    const PackedMass* c = cells + local[i];
+    constexpr std::size_t kUp = DsGrid::kTileSize;
+    occupied[0][i] = c[0].occupied;
+    occupied[1][i] = c[1].occupied;
+    occupied[2][i] = c[kUp].occupied;
+    occupied[3][i] = c[kUp + 1].occupied;
+    if constexpr (kWithFree) {
+      free[0][i] = c[0].free;
+      free[1][i] = c[1].free;
+      free[2][i] = c[kUp].free;
+      free[3][i] = c[kUp + 1].free;
     }
   }
 }
