@@ -1,6 +1,7 @@
 #include "grid/multires_map.hpp"
 
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "common/errors.hpp"
@@ -33,10 +34,25 @@ PackedMass pass_fixed_point(const EvidenceModel& ev) {
   return {65535, 65535};
 }
 
+// EvidenceModel::passed_free of every stored free mass: insertion's update
+// of open space becomes one read. Shared by all maps of one model (the
+// default one's is built once per process).
+std::shared_ptr<const std::vector<std::uint16_t>> passed_free_table(const EvidenceModel& ev) {
+  const auto build = [](const EvidenceModel& model) {
+    auto table = std::make_shared<std::vector<std::uint16_t>>(std::size_t{65536});
+    for (std::size_t f = 0; f < table->size(); ++f) (*table)[f] = model.passed_free(static_cast<std::uint16_t>(f));
+    return std::shared_ptr<const std::vector<std::uint16_t>>(std::move(table));
+  };
+  static const auto kDefault = build(EvidenceModel{});
+  const EvidenceModel d;
+  return ev.pass_free == d.pass_free && ev.min_unknown == d.min_unknown ? kDefault : build(ev);
+}
+
 }  // namespace
 
 MultiResMap::MultiResMap(const MapConfig& config) : config_(config) {
   config_.validate();
+  passed_free_ = passed_free_table(config_.evidence);
   pass_fixed_point_ = pass_fixed_point(config_.evidence);
   double res = config_.resolution;
   for (int i = 0; i < config_.levels; ++i, res *= 2.0) grids_.emplace_back(res);
@@ -66,15 +82,27 @@ class LevelWriter {
     for (PackedMass* cells : cells_) cells[i] = PackedMass::pack_valid(update(cells[i].unguarded_mass()));
   }
 
-  // A beam's pass: apply(c, update_passed), minus the cells it leaves as they are.
-  void pass(CellIndex c, const EvidenceModel& ev, PackedMass fixed_point) {
-    select_tile(c);
-    const int i = DsGrid::local_index(c);
-    for (PackedMass* cells : cells_) {
-      PackedMass& cell = cells[i];
-      if (cell == fixed_point) continue;
-      if (cell.occupied == 0) cell.free = ev.passed_free(cell.free);
+  // A beam's pass: apply(c, update_passed), minus the cells it leaves as
+  // they are, for cell `i` (local_index) of the tile last entered.
+  void enter_tile(CellIndex c) { select_tile(c); }
+  // `passed_free`: EvidenceModel::passed_free of every free mass.
+  void pass(int i, const EvidenceModel& ev, const std::uint16_t* passed_free, PackedMass fixed_point) {
+    const auto update = [&](PackedMass& cell) {
+      if (cell == fixed_point) return;
+      if (cell.occupied == 0) cell.free = passed_free[cell.free];
       else cell = PackedMass::pack_valid(ev.update_passed(cell.unguarded_mass()));
+    };
+    // Local SLAM writes one map or two: those without the loop's overhead on every cell.
+    switch (cells_.size()) {
+      case 1:
+        update(cells_[0][i]);
+        break;
+      case 2:
+        update(cells_[0][i]);
+        update(cells_[1][i]);
+        break;
+      default:
+        for (PackedMass* cells : cells_) update(cells[i]);
     }
   }
 
@@ -113,6 +141,7 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
   const EvidenceModel& ev = config.evidence;
   const DsMass hit = ev.hit();
   const PackedMass fixed_point = maps.front()->pass_fixed_point_;
+  const std::uint16_t* passed_free = maps.front()->passed_free_->data();
   for (std::size_t level = 0; level < maps.front()->grids_.size(); ++level) {
     const DsGrid& grid = maps.front()->grids_[level];
     LevelWriter writer(maps, level);
@@ -130,8 +159,9 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
         // traverse_ray leaves out the cell holding its end, so the hit's own
         // cell never gets free evidence, whatever the margin.
         const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
-        traverse_ray(origin, end, grid.resolution(),
-                     [&](CellIndex c) { writer.pass(c, ev, fixed_point); });
+        traverse_ray_by_tile(
+            origin, end, grid.resolution(), [&](CellIndex c) { writer.enter_tile(c); },
+            [&](int i) { writer.pass(i, ev, passed_free, fixed_point); });
       }
     }
     const bool splat = level > 0 || config.splat_fine_hits;

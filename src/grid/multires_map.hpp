@@ -4,6 +4,8 @@
 // The finest level is the map users see; the coarser ones give the matcher a
 // wide, smooth basin so that it can recover from a poor prior before it
 // refines on the fine level (the multi-resolution idea of Hector SLAM).
+#include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -81,6 +83,8 @@ class MultiResMap {
   // occupied), where passes alone lead: open space, crossed by most beams.
   // Insertion skips it; the result is the same to the bit.
   PackedMass pass_fixed_point_;
+  // The pass's result for each free mass of a cell with no occupied mass.
+  std::shared_ptr<const std::vector<std::uint16_t>> passed_free_;
 };
 
 }  // namespace dsswarm

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <vector>
 
 namespace dsswarm {
@@ -41,6 +42,42 @@ TEST(RayTraversal, DiagonalCellsAreFourConnectedAndEndNextToTheHit) {
 
 TEST(RayTraversal, SameCellVisitsNothing) {
   EXPECT_TRUE(trace({0.01, 0.01}, {0.02, 0.03}, 0.1).empty());
+}
+
+// The writers' traversal must give exactly traverse_ray's cells, in order,
+// and announce a tile only before cells of it: beams of every direction and
+// length, across tile borders on both sides of the origin.
+TEST(RayTraversal, ByTileGivesTheSameCellsAndEntersOnlyTheirTiles) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-12.0, 12.0);
+  constexpr double kRes = 0.05;
+  int tiles_entered = 0;
+  for (int ray = 0; ray < 2000; ++ray) {
+    const Eigen::Vector2d a{coordinate(rng), coordinate(rng)};
+    const Eigen::Vector2d b = ray % 4 == 0 ? Eigen::Vector2d(a.x() + coordinate(rng), a.y())  // axis-parallel too
+                                           : Eigen::Vector2d(coordinate(rng), coordinate(rng));
+    const std::vector<CellIndex> want = trace(a, b, kRes);
+    std::vector<CellIndex> got;
+    CellIndex tile{};
+    int announced = 0, empty_tiles = 0, visits_in_tile = 0;
+    traverse_ray_by_tile(
+        a, b, kRes,
+        [&](CellIndex c) {
+          if (announced > 0 && visits_in_tile == 0) ++empty_tiles;
+          tile = {c.x & ~(DsGrid::kTileSize - 1), c.y & ~(DsGrid::kTileSize - 1)};
+          ++announced;
+          visits_in_tile = 0;
+        },
+        [&](int local) {
+          got.push_back(DsGrid::tile_cell(tile, local));  // wrong if a tile went unannounced
+          ++visits_in_tile;
+        });
+    if (announced > 0 && visits_in_tile == 0) ++empty_tiles;
+    EXPECT_EQ(empty_tiles, 0) << "ray " << ray;
+    tiles_entered += announced;
+    ASSERT_EQ(got, want) << "ray " << ray;
+  }
+  EXPECT_GT(tiles_entered, 2000);
 }
 
 }  // namespace
