@@ -152,6 +152,8 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"min_sigma_theta", DSS_FIELD(double, matcher.min_sigma_theta)},
         {"converged_fraction", DSS_FIELD(double, matcher.converged_fraction)},
         {"polish_evaluations", DSS_FIELD(int, matcher.polish_evaluations)},
+        {"fine_search_stride", DSS_FIELD(int, matcher.fine_search_stride)},
+        {"coarse_stride", DSS_FIELD(int, matcher.coarse_stride)},
         {"polish_step_theta", DSS_FIELD(double, matcher.polish_step_theta)},
         {"unknown_value", DSS_FIELD(float, matcher.unknown_value)},
         {"prior_weight", DSS_FIELD(double, matcher.prior_weight)},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "common/errors.hpp"
 #include "matching/scan_scorer.hpp"
@@ -15,6 +16,8 @@ void MatcherConfig::validate() const {
   if (!(shrink_on_success > 0.0 && shrink_on_success <= 1.0))
     throw ConfigError("matcher.shrink_on_success must be in (0, 1]");
   if (patience < 1) throw ConfigError("matcher.patience must be >= 1");
+  if (fine_search_stride < 1 || fine_search_stride > 16) throw ConfigError("matcher.fine_search_stride must be in [1, 16]");
+  if (coarse_stride < 1 || coarse_stride > 16) throw ConfigError("matcher.coarse_stride must be in [1, 16]");
 }
 
 MonteCarloMatcher::MonteCarloMatcher(const MatcherConfig& config, std::uint64_t seed)
@@ -46,6 +49,7 @@ struct Search {
   const ScanScorer& scorer;
   int budget;  // evaluations left at this level
   MotionPrior prior;
+  const ScanScorer* sampler = nullptr;  // the random phase's scorer, where it uses fewer points
   int used = 0;
 
   const DsGrid& grid() const { return scorer.grid(); }
@@ -53,6 +57,10 @@ struct Search {
   double score(const Pose2& p) {
     ++used;
     return scorer.score(p) - prior.penalty(p);
+  }
+  double sample(const Pose2& p) {
+    ++used;
+    return (sampler ? *sampler : scorer).score(p) - prior.penalty(p);
   }
 };
 
@@ -132,10 +140,12 @@ void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, dou
   // they always use their budget.
   const double converged_xy = level == 0 ? search.grid().resolution() * config_.converged_fraction : 0.0;
   int failures = 0;
+  // With a sampler the random phase compares scores over its points only.
+  if (search.sampler) best_score = search.sample(best);
   while (search.used < random_budget && sigma_xy > converged_xy) {
     const Pose2 candidate(best.x + rng_.normal() * sigma_xy, best.y + rng_.normal() * sigma_xy,
                           best.theta + rng_.normal() * sigma_th);
-    const double s = search.score(candidate);
+    const double s = search.sample(candidate);
     if (s > best_score) {
       best = candidate;
       best_score = s;
@@ -148,6 +158,7 @@ void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, dou
       failures = 0;
     }
   }
+  if (search.sampler) best_score = search.score(best);
   polish(search, best, best_score, search.grid().resolution() * 0.5,
          config_.polish_step_theta * static_cast<double>(1 << level));
 }
@@ -168,7 +179,8 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   Pose2 coarse_best = prior;
   double sigma_xy = config_.sigma_xy, sigma_th = config_.sigma_theta;
   for (int level = levels - 1; level >= 1; --level) {
-    const ScanScorer scorer(map.level(level), points, std::size_t{1} << std::min(level, 2), config_.unknown_value);
+    const auto stride = static_cast<std::size_t>(config_.coarse_stride) << std::min(level - 1, 1);
+    const ScanScorer scorer(map.level(level), points, stride, config_.unknown_value);
     Search search{scorer, coarse_budget, motion};
     double score = search.score(coarse_best);
     search_level(search, level, coarse_best, score, sigma_xy, sigma_th);
@@ -195,8 +207,11 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   const int per_start = fine_budget / static_cast<int>(starts.size());
   result.score = -1.0;
   const ScanScorer fine_scorer(fine, points, 1, config_.unknown_value);
+  const auto stride = static_cast<std::size_t>(config_.fine_search_stride);
+  const std::optional<ScanScorer> sampler =
+      stride > 1 ? std::optional<ScanScorer>(std::in_place, fine, points, stride, config_.unknown_value) : std::nullopt;
   for (Start& start : starts) {
-    Search search{fine_scorer, per_start, motion};
+    Search search{fine_scorer, per_start, motion, sampler ? &*sampler : nullptr};
     double score = search.score(start.pose);
     search_level(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
     result.evaluations += search.used;

@@ -33,6 +33,13 @@ struct MatcherConfig {
   double converged_fraction = 0.1;
   // Evaluations per level kept for the final deterministic coordinate ascent.
   int polish_evaluations = 36;
+  // The finest level's random phase may score every n-th point only (it has
+  // to find the basin); the polish always scores all of them. 1 (all points
+  // throughout) by default: see docs/performance.md for what 2 gains and costs.
+  int fine_search_stride = 1;
+  // The coarse levels score every n-th point (the second coarse level and
+  // beyond every 2n-th): their cells are wide and they only place the scan roughly.
+  int coarse_stride = 2;
   double polish_step_theta = 0.005;  // rad, first θ step on the finest level (doubles per level)
   // Motion prior: every candidate's score is reduced by
   // prior_weight × (|Δxy|²/prior_sigma_xy² + Δθ²/prior_sigma_theta²) relative
