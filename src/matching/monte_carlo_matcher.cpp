@@ -16,7 +16,8 @@ void MatcherConfig::validate() const {
   if (!(shrink_on_success > 0.0 && shrink_on_success <= 1.0))
     throw ConfigError("matcher.shrink_on_success must be in (0, 1]");
   if (patience < 1) throw ConfigError("matcher.patience must be >= 1");
-  if (fine_search_stride < 1 || fine_search_stride > 16) throw ConfigError("matcher.fine_search_stride must be in [1, 16]");
+  if (fine_search_stride < 1 || fine_search_stride > 16)
+    throw ConfigError("matcher.fine_search_stride must be in [1, 16]");
   if (coarse_stride < 1 || coarse_stride > 16) throw ConfigError("matcher.coarse_stride must be in [1, 16]");
 }
 
