@@ -38,6 +38,7 @@ TEST_P(ReplayScenarioTest, ALiveSourceGetsExactlyTheAgentsStreamOnItsClock) {
   net::LiveInputConfig config;
   config.ns = net::test::test_namespace();
   config.queue_capacity = 64;
+  config.wait_for_odometry = 5.0;  // a loaded machine may deliver a scan's odometry after the default 0.25 s
   net::LiveScanSource input(agent, config);
 
   constexpr double kRate = 4.0, kStartIn = 1.5;

@@ -133,6 +133,7 @@ TEST_F(ReplayTest, ALiveSourceGetsTheScansReadLogReads) {
   LiveInputConfig config;
   config.ns = test::test_namespace();
   config.queue_capacity = 64;
+  config.wait_for_odometry = 5.0;  // a loaded machine may deliver a scan's odometry after the default 0.25 s
   LiveScanSource input(agent, config);
   Child replay(replay_args({"--rate", "5", "--wait-for-subscribers", "1"}), dir / "replay.out");
   ASSERT_TRUE(replay.started());
