@@ -46,8 +46,8 @@ struct EvidenceModel {
   // pack_valid(update_passed(m)).free for a stored cell with no occupied mass
   // (open space, most of what beams cross) and free mass `free`: the same
   // operations with the ones that multiply or add that zero left out, so the
-  // same result to the bit (checked for all 65536 values) in a third of the
-  // instructions. Its occupied mass stays 0.
+  // same result to the bit (checked for all 65536 values). Its occupied mass
+  // stays 0. Insertion reads it from a table (MultiResMap).
   std::uint16_t passed_free(std::uint16_t free) const {
     const float f = static_cast<float>(free) * (1.0f / PackedMass::kOne);
     const float ub = 1.0f - pass_free;

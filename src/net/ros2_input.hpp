@@ -52,7 +52,7 @@ struct LiveInputConfig {
   // none; offset zero).
   double wait_for_odometry = 0.25;
   double max_extrapolation = 0.1;        // s (scan time)
-  double odometry_history = 5.0;         // s (scan time) of odometry kept for interpolation
+  double odometry_history = 5.0;         // s (scan time) of odometry kept (more while a waiting scan needs it)
   std::size_t max_odometry_poses = 4096;  // hard cap whatever the stamps
   std::size_t max_static_frames = 256;
   SampleLimits limits;
