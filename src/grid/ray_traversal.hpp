@@ -39,8 +39,17 @@ struct RaySteps {
     // against floating-point edge cases ever looping past the end.
     steps = std::abs(last.x - cell.x) + std::abs(last.y - cell.y);
   }
-  // Whether the next step crosses into the neighbour along x (else along y).
-  bool next_is_x() const { return t_x < t_y; }
+  // Steps into the next cell; returns whether it was the neighbour along x (else along y).
+  bool advance() {
+    if (t_x < t_y) {
+      cell.x += step_x;
+      t_x += delta_x;
+      return true;
+    }
+    cell.y += step_y;
+    t_y += delta_y;
+    return false;
+  }
 };
 
 }  // namespace ray_detail
@@ -50,13 +59,7 @@ void traverse_ray(const Eigen::Vector2d& start, const Eigen::Vector2d& end, doub
   ray_detail::RaySteps r(start, end, resolution);
   for (int i = 0; i < r.steps && !(r.cell == r.last); ++i) {
     visit(r.cell);
-    if (r.next_is_x()) {
-      r.cell.x += r.step_x;
-      r.t_x += r.delta_x;
-    } else {
-      r.cell.y += r.step_y;
-      r.t_y += r.delta_y;
-    }
+    r.advance();
   }
 }
 
@@ -77,14 +80,10 @@ void traverse_ray_by_tile(const Eigen::Vector2d& start, const Eigen::Vector2d& e
   const int row_step = r.step_y * DsGrid::kTileSize;
   for (int i = 0; i < r.steps && !(r.cell == r.last); ++i) {
     visit(local);
-    if (r.next_is_x()) {
-      r.cell.x += r.step_x;
-      r.t_x += r.delta_x;
+    if (r.advance()) {
       lx += r.step_x;
       local += r.step_x;
     } else {
-      r.cell.y += r.step_y;
-      r.t_y += r.delta_y;
       ly += r.step_y;
       local += row_step;
     }

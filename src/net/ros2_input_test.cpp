@@ -47,6 +47,29 @@ void expect_pose_near(const Pose2& a, const Pose2& b, double tolerance) {
   EXPECT_NEAR(normalize_angle(a.theta - b.theta), 0.0, tolerance);
 }
 
+// An Odometry message putting frame `base` (borrowed: it must outlive the
+// message) at `pose` at time `stamp`.
+ros::Odometry odometry_message(double stamp, const Pose2& pose, const std::string& base) {
+  ros::Odometry o{};
+  o.header.stamp = to_ros_time(stamp);
+  o.child_frame_id = borrow(base);
+  o.pose.pose = to_ros_pose(pose);
+  return o;
+}
+
+// Takes `played.size()` scans from `input`: each must be the one played, in
+// order, with exactly its own odometry.
+void expect_each_scan_with_its_own_odometry(LiveScanSource& input, const std::vector<LaserScan>& played) {
+  for (const LaserScan& want : played) {
+    const std::optional<LaserScan> got = input.next(kTimeout);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_NEAR(got->timestamp, want.timestamp, 1e-6);
+    ASSERT_TRUE(got->odometry.has_value()) << "scan at " << want.timestamp - kStart;
+    expect_pose_near(*got->odometry, *want.odometry, 1e-9);
+  }
+  EXPECT_EQ(input.stats().scans_without_odometry, 0u);
+}
+
 // Everything under this test's namespace, tf included, so that no other test
 // (sharing a domain by chance) can feed it.
 LiveInputConfig input_config() {
@@ -124,13 +147,8 @@ TEST(LiveScanSource, OdometryIsInterpolatedAtTheScanStamp) {
   ASSERT_TRUE(scan.wait_for_readers(1, kTimeout));
 
   const std::string base = "base_link";
-  for (int i = 0; i < 3; ++i) {  // odometry at 0.0, 0.1, 0.2 s moving 1 m/s along x, turning 1 rad/s
-    ros::Odometry o{};
-    o.header.stamp = to_ros_time(kStart + 0.1 * i);
-    o.child_frame_id = borrow(base);
-    o.pose.pose = to_ros_pose(Pose2(0.1 * i, 0.0, 0.1 * i));
-    odom.write(o);
-  }
+  for (int i = 0; i < 3; ++i)  // odometry at 0.0, 0.1, 0.2 s moving 1 m/s along x, turning 1 rad/s
+    odom.write(odometry_message(kStart + 0.1 * i, Pose2(0.1 * i, 0.0, 0.1 * i), base));
   const LaserScan s = make_scan(kStart + 0.15, 0);
   scan.write(to_ros_scan(s, base));  // the laser at the base frame: no offset needed
   const std::optional<LaserScan> got = input.next(kTimeout);
@@ -167,22 +185,11 @@ TEST(LiveScanSource, ABackwardPlayedStreamGetsEachScansOwnOdometry) {
     for (const LaserScan& s : played) {
       scan.write(to_ros_scan(s, base));  // the scan first, its odometry a moment later
       std::this_thread::sleep_for(20ms);
-      ros::Odometry o{};
-      o.header.stamp = to_ros_time(s.timestamp);
-      o.child_frame_id = borrow(base);
-      o.pose.pose = to_ros_pose(*s.odometry);
-      odom.write(o);
+      odom.write(odometry_message(s.timestamp, *s.odometry, base));
       std::this_thread::sleep_for(20ms);
     }
   });
-  for (const LaserScan& want : played) {
-    const std::optional<LaserScan> got = input.next(kTimeout);
-    ASSERT_TRUE(got.has_value());
-    EXPECT_NEAR(got->timestamp, want.timestamp, 1e-6);
-    ASSERT_TRUE(got->odometry.has_value()) << "scan at " << want.timestamp - kStart;
-    expect_pose_near(*got->odometry, *want.odometry, 1e-9);
-  }
-  EXPECT_EQ(input.stats().scans_without_odometry, 0u);
+  expect_each_scan_with_its_own_odometry(input, played);
 }
 
 // A consumer far behind the stream (a busy machine, a log played fast): the
@@ -209,21 +216,10 @@ TEST(LiveScanSource, AConsumerFarBehindStillGetsEachScansOdometry) {
   for (int i = 0; i < kScans; ++i) played.push_back(make_scan(kStart + 0.1 * i, i));
   for (const LaserScan& s : played) {
     scan.write(to_ros_scan(s, base));
-    ros::Odometry o{};
-    o.header.stamp = to_ros_time(s.timestamp);
-    o.child_frame_id = borrow(base);
-    o.pose.pose = to_ros_pose(*s.odometry);
-    odom.write(o);
+    odom.write(odometry_message(s.timestamp, *s.odometry, base));
   }
   std::this_thread::sleep_for(200ms);  // all of it has arrived before the first scan is taken
-  for (const LaserScan& want : played) {
-    const std::optional<LaserScan> got = input.next(kTimeout);
-    ASSERT_TRUE(got.has_value());
-    EXPECT_NEAR(got->timestamp, want.timestamp, 1e-6);
-    ASSERT_TRUE(got->odometry.has_value()) << "scan at " << want.timestamp - kStart;
-    expect_pose_near(*got->odometry, *want.odometry, 1e-9);
-  }
-  EXPECT_EQ(input.stats().scans_without_odometry, 0u);
+  expect_each_scan_with_its_own_odometry(input, played);
 }
 
 TEST(LiveScanSource, OdometryAndLaserMountFromTfThroughIntermediateFrames) {
