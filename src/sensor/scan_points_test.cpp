@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 namespace dsswarm {
@@ -48,6 +49,15 @@ TEST(ScanPoints, PointsAheadWeighMoreThanPointsAside) {
   EXPECT_GT(pts[1].weight, pts[0].weight);
   EXPECT_NEAR(pts[0].weight, pts[2].weight, 1e-6);
   EXPECT_NEAR(pts[0].weight, 1.0, 1e-6);
+}
+
+TEST(ScanPoints, WeightFollowsThePowerOfTheBearingsCosine) {
+  const PointWeightConfig c{.forward_gain = 2.0, .forward_power = 3.0};
+  EXPECT_NEAR(point_weight(5.0, 0.0, c), 3.0, 1e-12);                         // ahead
+  EXPECT_NEAR(point_weight(1.0, std::sqrt(3.0), c), 1.0 + 2.0 / 8.0, 1e-12);  // 60°: cos 0.5
+  EXPECT_NEAR(point_weight(0.0, -4.0, c), 1.0, 1e-12);                        // aside
+  EXPECT_NEAR(point_weight(-3.0, 1.0, c), 1.0, 1e-12);                        // behind
+  EXPECT_NEAR(point_weight(0.0, 0.0, c), 3.0, 1e-12);  // on the laser: bearing 0 by convention
 }
 
 }  // namespace

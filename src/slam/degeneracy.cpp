@@ -20,18 +20,27 @@ void DegeneracyConfig::validate() const {
 
 namespace {
 
+// Eigenvalues ascending with their vectors, in closed form: Eigen's
+// iterative solver cost more than the rest of this check (once per scan point).
+Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solve_2x2(const Eigen::Matrix2d& m) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
+  eigen.computeDirect(m);
+  return eigen;
+}
+
 // The normal of the line fitted to point i's neighbourhood, if it is a line.
 std::optional<Eigen::Vector2d> patch_normal(const std::vector<ScanPoint>& points, std::size_t i,
                                             const DegeneracyConfig& config) {
   const Eigen::Vector2d centre(points[i].x, points[i].y);
   const std::size_t k = static_cast<std::size_t>(config.normal_neighbors);
   const std::size_t first = i >= k ? i - k : 0, last = std::min(points.size() - 1, i + k);
+  const double radius_squared = config.normal_radius * config.normal_radius;
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d outer = Eigen::Matrix2d::Zero();
   int n = 0;
   for (std::size_t j = first; j <= last; ++j) {
     const Eigen::Vector2d p(points[j].x, points[j].y);
-    if ((p - centre).norm() > config.normal_radius) continue;
+    if ((p - centre).squaredNorm() > radius_squared) continue;
     sum += p;
     outer += p * p.transpose();
     ++n;
@@ -39,7 +48,7 @@ std::optional<Eigen::Vector2d> patch_normal(const std::vector<ScanPoint>& points
   if (n < config.min_patch) return std::nullopt;
   const Eigen::Vector2d mean = sum / n;
   const Eigen::Matrix2d covariance = outer / n - mean * mean.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);  // eigenvalues ascending
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen = solve_2x2(covariance);
   if (!(eigen.eigenvalues()(1) > 0.0) || eigen.eigenvalues()(0) > config.max_patch_spread * eigen.eigenvalues()(1))
     return std::nullopt;
   return eigen.eigenvectors().col(0);
@@ -57,7 +66,7 @@ std::optional<Eigen::Vector2d> weak_direction(const std::vector<ScanPoint>& poin
       ++normals;
     }
   if (normals < config.min_normals) return std::nullopt;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen = solve_2x2(scatter);
   if (eigen.eigenvalues()(0) >= config.min_ratio * eigen.eigenvalues()(1)) return std::nullopt;
   return eigen.eigenvectors().col(0).normalized();
 }
