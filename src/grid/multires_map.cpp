@@ -1,5 +1,7 @@
 #include "grid/multires_map.hpp"
 
+#include <array>
+#include <bit>
 #include <limits>
 #include <memory>
 #include <string>
@@ -82,30 +84,6 @@ class LevelWriter {
     for (PackedMass* cells : cells_) cells[i] = PackedMass::pack_valid(update(cells[i].unguarded_mass()));
   }
 
-  // A beam's pass: apply(c, update_passed), minus the cells it leaves as
-  // they are, for cell `i` (local_index) of the tile last entered.
-  void enter_tile(CellIndex c) { select_tile(c); }
-  // `passed_free`: EvidenceModel::passed_free of every free mass.
-  void pass(int i, const EvidenceModel& ev, const std::uint16_t* passed_free, PackedMass fixed_point) {
-    const auto update = [&](PackedMass& cell) {
-      if (cell == fixed_point) return;
-      if (cell.occupied == 0) cell.free = passed_free[cell.free];
-      else cell = PackedMass::pack_valid(ev.update_passed(cell.unguarded_mass()));
-    };
-    // Local SLAM writes one map or two: those without the loop's overhead on every cell.
-    switch (cells_.size()) {
-      case 1:
-        update(cells_[0][i]);
-        break;
-      case 2:
-        update(cells_[0][i]);
-        update(cells_[1][i]);
-        break;
-      default:
-        for (PackedMass* cells : cells_) update(cells[i]);
-    }
-  }
-
  private:
   void select_tile(CellIndex c) {
     const std::int32_t tx = c.x >> DsGrid::kTileBits, ty = c.y >> DsGrid::kTileBits;
@@ -121,6 +99,58 @@ class LevelWriter {
   // No tile yet: no cell's tile coordinate is this low.
   std::int32_t tile_x_ = std::numeric_limits<std::int32_t>::min(), tile_y_ = tile_x_;
 };
+
+// A beam's pass, apply(c, update_passed), in N maps at once, minus the cells
+// it leaves as they are. N is fixed at compile time so that the current
+// tiles stay in registers: every free cell of every beam comes through here.
+template <std::size_t N>
+class PassWriter {
+ public:
+  PassWriter(std::span<MultiResMap* const> maps, int level, const std::uint16_t* passed_free, PackedMass fixed_point)
+      : ev_(maps.front()->config().evidence),
+        passed_free_(passed_free),
+        fixed_point_(std::bit_cast<std::uint32_t>(fixed_point)) {
+    for (std::size_t k = 0; k < N; ++k) grids_[k] = &maps[k]->mutable_level(level);
+  }
+  void enter_tile(CellIndex c) {
+    for (std::size_t k = 0; k < N; ++k) cells_[k] = grids_[k]->mutable_tile_cells(c);
+  }
+  // Cell `i` (local_index) of the tile last entered.
+  void pass(int i) {
+    for (std::size_t k = 0; k < N; ++k) {
+      PackedMass& cell = cells_[k][i];
+      if (std::bit_cast<std::uint32_t>(cell) == fixed_point_) continue;
+      if (cell.occupied == 0) cell.free = passed_free_[cell.free];
+      else cell = PackedMass::pack_valid(ev_.update_passed(cell.unguarded_mass()));
+    }
+  }
+
+ private:
+  const EvidenceModel& ev_;
+  const std::uint16_t* passed_free_;  // EvidenceModel::passed_free of every free mass
+  std::uint32_t fixed_point_;         // the stored cell a pass leaves as it is
+  std::array<DsGrid*, N> grids_{};
+  std::array<PackedMass*, N> cells_{};
+};
+
+// Free evidence along every beam into one level of N maps.
+template <std::size_t N>
+void pass_beams(std::span<MultiResMap* const> maps, int level, const Eigen::Vector2d& origin,
+                const std::vector<Eigen::Vector2d>& hits, double margin, const std::uint16_t* passed_free,
+                PackedMass fixed_point) {
+  PassWriter<N> writer(maps, level, passed_free, fixed_point);
+  const double resolution = maps.front()->level(level).resolution();
+  for (const Eigen::Vector2d& h : hits) {
+    const Eigen::Vector2d beam = h - origin;
+    const double length = beam.norm();
+    if (length <= margin) continue;
+    // traverse_ray leaves out the cell holding its end, so the hit's own
+    // cell never gets free evidence, whatever the margin.
+    const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
+    traverse_ray_by_tile(
+        origin, end, resolution, [&](CellIndex c) { writer.enter_tile(c); }, [&](int i) { writer.pass(i); });
+  }
+}
 
 }  // namespace
 
@@ -152,17 +182,12 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
     // that guide the coarse search (see MapConfig::free_space_on_coarse_levels).
     if (level == 0 || config.free_space_on_coarse_levels) {
       const double margin = config.free_margin_cells * grid.resolution();
-      for (const Eigen::Vector2d& h : hits) {
-        const Eigen::Vector2d beam = h - origin;
-        const double length = beam.norm();
-        if (length <= margin) continue;
-        // traverse_ray leaves out the cell holding its end, so the hit's own
-        // cell never gets free evidence, whatever the margin.
-        const Eigen::Vector2d end = margin > 0.0 ? Eigen::Vector2d(origin + beam * ((length - margin) / length)) : h;
-        traverse_ray_by_tile(
-            origin, end, grid.resolution(), [&](CellIndex c) { writer.enter_tile(c); },
-            [&](int i) { writer.pass(i, ev, passed_free, fixed_point); });
-      }
+      // Local SLAM writes one map or two; more are written one at a time.
+      const int l = static_cast<int>(level);
+      if (maps.size() == 2) pass_beams<2>(maps, l, origin, hits, margin, passed_free, fixed_point);
+      else
+        for (std::size_t k = 0; k < maps.size(); ++k)
+          pass_beams<1>(maps.subspan(k, 1), l, origin, hits, margin, passed_free, fixed_point);
     }
     const bool splat = level > 0 || config.splat_fine_hits;
     if (!splat && config.surface_gap > 0.0) {
