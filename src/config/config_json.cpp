@@ -152,6 +152,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"min_sigma_theta", DSS_FIELD(double, matcher.min_sigma_theta)},
         {"converged_fraction", DSS_FIELD(double, matcher.converged_fraction)},
         {"polish_evaluations", DSS_FIELD(int, matcher.polish_evaluations)},
+        {"polish_heat_evaluations", DSS_FIELD(int, matcher.polish_heat_evaluations)},
         {"fine_search_stride", DSS_FIELD(int, matcher.fine_search_stride)},
         {"coarse_stride", DSS_FIELD(int, matcher.coarse_stride)},
         {"polish_step_theta", DSS_FIELD(double, matcher.polish_step_theta)},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "common/errors.hpp"
@@ -19,6 +20,8 @@ void MatcherConfig::validate() const {
   if (fine_search_stride < 1 || fine_search_stride > 16)
     throw ConfigError("matcher.fine_search_stride must be in [1, 16]");
   if (coarse_stride < 1 || coarse_stride > 16) throw ConfigError("matcher.coarse_stride must be in [1, 16]");
+  if (polish_heat_evaluations < 0 || polish_heat_evaluations > polish_evaluations)
+    throw ConfigError("matcher.polish_heat_evaluations must be in [0, matcher.polish_evaluations]");
 }
 
 MonteCarloMatcher::MonteCarloMatcher(const MatcherConfig& config, std::uint64_t seed)
@@ -69,15 +72,31 @@ struct Search {
 // best improvement, halve the steps when none improves. Random samples rarely
 // move along exactly one axis, yet in a corridor that is the only direction
 // with signal; this finds it and converges to a local maximum precisely.
-void polish(Search& search, Pose2& best, double& best_score, double step_xy, double step_th) {
-  const double min_step_xy = step_xy / 16.0;
-  while (!search.exhausted() && step_xy >= min_step_xy) {
+// Resumable: run() spends what the search allows and keeps its steps.
+struct Polish {
+  Pose2 best;
+  double best_score;
+  double step_xy, step_th;
+  double min_step_xy = step_xy / 16.0;
+  int back = -1;  // the move that returns to the previous best, after an improvement
+
+  bool converged() const { return step_xy < min_step_xy; }
+  void run(Search& search) {
+    while (!search.exhausted() && !converged()) round(search);
+  }
+
+ private:
+  void round(Search& search) {
     const Pose2 moves[6] = {{best.x + step_xy, best.y, best.theta}, {best.x - step_xy, best.y, best.theta},
                             {best.x, best.y + step_xy, best.theta}, {best.x, best.y - step_xy, best.theta},
                             {best.x, best.y, best.theta + step_th}, {best.x, best.y, best.theta - step_th}};
     int winner = -1;
     double winner_score = best_score;
     for (int k = 0; k < 6 && !search.exhausted(); ++k) {
+      if (k == back) {  // the pose just left, known to score less: its turn passes unscored
+        ++search.used;
+        continue;
+      }
       const double s = search.score(moves[k]);
       if (s > winner_score) {
         winner = k;
@@ -87,16 +106,19 @@ void polish(Search& search, Pose2& best, double& best_score, double step_xy, dou
     if (winner >= 0) {
       best = moves[winner];
       best_score = winner_score;
+      back = winner ^ 1;  // moves come in ± pairs
     } else {
       step_xy *= 0.5;
       step_th *= 0.5;
+      back = -1;
     }
   }
-}
+};
 
 }  // namespace matcher_detail
 
 using matcher_detail::Search;
+using matcher_detail::Polish;
 
 MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<ScanPoint>& points,
                                      const std::vector<Pose2>& priors) {
@@ -134,6 +156,16 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
 
 void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
                                      double& sigma_th) {
+  random_phase(search, level, best, best_score, sigma_xy, sigma_th);
+  Polish polish{best, best_score, search.grid().resolution() * 0.5,
+                config_.polish_step_theta * static_cast<double>(1 << level)};
+  polish.run(search);
+  best = polish.best;
+  best_score = polish.best_score;
+}
+
+void MonteCarloMatcher::random_phase(Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
+                                     double& sigma_th) {
   const int random_budget = std::max(0, search.budget - config_.polish_evaluations);
   // On the finest level the random phase ends early once the spread has
   // collapsed well below a cell: further samples can only confirm what the
@@ -160,8 +192,6 @@ void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, dou
     }
   }
   if (search.sampler) best_score = search.score(best);
-  polish(search, best, best_score, search.grid().resolution() * 0.5,
-         config_.polish_step_theta * static_cast<double>(1 << level));
 }
 
 MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vector<ScanPoint>& points,
@@ -206,21 +236,33 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   std::vector<Start> starts{{coarse_best, sigma_xy, sigma_th}};
   if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
   const int per_start = fine_budget / static_cast<int>(starts.size());
-  result.score = -1.0;
   const ScanScorer fine_scorer(fine, points, 1, config_.unknown_value);
   const auto stride = static_cast<std::size_t>(config_.fine_search_stride);
   const std::optional<ScanScorer> sampler =
       stride > 1 ? std::optional<ScanScorer>(std::in_place, fine, points, stride, config_.unknown_value) : std::nullopt;
+  // Each start's random phase, then their polishes race: each gets a few
+  // rounds, then the leader finishes alone. The polish is the costlier part,
+  // and a start behind after a few rounds rarely overtakes.
+  std::vector<Polish> polishes;
   for (Start& start : starts) {
     Search search{fine_scorer, per_start, motion, sampler ? &*sampler : nullptr};
     double score = search.score(start.pose);
-    search_level(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
+    random_phase(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
     result.evaluations += search.used;
-    if (score > result.score) {
-      result.score = score;
-      result.pose = start.pose;
-    }
+    polishes.push_back({start.pose, score, fine.resolution() * 0.5, config_.polish_step_theta});
   }
+  const int heat = polishes.size() > 1 ? config_.polish_heat_evaluations : 0;
+  for (Polish& polish : polishes) {
+    Search search{fine_scorer, heat, motion};
+    polish.run(search);
+    result.evaluations += search.used;
+  }
+  Polish& leader = *std::max_element(polishes.begin(), polishes.end(),
+                                     [](const Polish& a, const Polish& b) { return a.best_score < b.best_score; });
+  Search search{fine_scorer, config_.polish_evaluations - heat, motion};
+  leader.run(search);
+  result.evaluations += search.used;
+  result.pose = leader.best;
   result.score = fine_scorer.score(result.pose);  // without the penalty
   result.prior_score = fine_scorer.score(prior);
   return result;

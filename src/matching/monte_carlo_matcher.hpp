@@ -33,6 +33,9 @@ struct MatcherConfig {
   double converged_fraction = 0.1;
   // Evaluations per level kept for the final deterministic coordinate ascent.
   int polish_evaluations = 36;
+  // When the finest level searched from two starts, each start's polish first
+  // gets this many evaluations, then the better one the rest of its budget.
+  int polish_heat_evaluations = 12;
   // The finest level's random phase may score every n-th point only (it has
   // to find the basin); the polish always scores all of them. 1 (all points
   // throughout) by default: see docs/performance.md for what 2 gains and costs.
@@ -75,6 +78,10 @@ class MonteCarloMatcher {
   MatchResult match_from(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
   // Random phase then coordinate ascent on one level, updating the best pose and the spreads.
   void search_level(matcher_detail::Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
+                    double& sigma_th);
+  // The random phase alone: samples around `best` until the level's budget
+  // less its polish share is spent (or, on the finest level, the spread collapsed).
+  void random_phase(matcher_detail::Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
                     double& sigma_th);
 
   MatcherConfig config_;

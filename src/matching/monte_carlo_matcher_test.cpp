@@ -93,6 +93,28 @@ TEST(MonteCarloMatcher, RecoversPoseSearchingOnFewerPoints) {
   EXPECT_GE(recovered_poses(fewer), 18);
 }
 
+// From two starts the polishes race: whatever share each gets before the
+// leader finishes alone, the scan is placed, and a shorter heat costs fewer
+// evaluations.
+TEST(MonteCarloMatcher, RecoversPoseWhateverThePolishHeat) {
+  const MultiResMap map = map_from_views({Pose2(0, 0, 0), Pose2(-1, 3, 2.0), Pose2(4, 0, -2.5), Pose2(3, 2, 1.0)});
+  const Pose2 truth(0.8, 0.9, 0.4);
+  const auto pts = scan_to_points(scan_from(truth));
+  const Pose2 prior(truth.x + 0.08, truth.y - 0.06, truth.theta + 0.04);  // far enough for two starts
+  int previous = 0;
+  for (const int heat : {36, 12, 0}) {
+    MatcherConfig config;
+    config.polish_heat_evaluations = heat;
+    EXPECT_GE(recovered_poses(config), 18) << "heat " << heat;
+    MonteCarloMatcher matcher(config, 5);
+    const MatchResult r = matcher.match(map, pts, prior);
+    if (previous > 0) {
+      EXPECT_LT(r.evaluations, previous) << "heat " << heat;
+    }
+    previous = r.evaluations;
+  }
+}
+
 TEST(MonteCarloMatcher, SameSeedSameResult) {
   const MultiResMap map = map_from_views({Pose2(0, 0, 0), Pose2(3, 2, 1.0)});
   const auto pts = scan_to_points(scan_from(Pose2(0.2, 0.1, 0.05)));
@@ -122,6 +144,11 @@ TEST(MatcherConfig, RejectsBadValues) {
   EXPECT_THROW(c.validate(), ConfigError);
   c = {};
   c.coarse_stride = 17;
+  EXPECT_THROW(c.validate(), ConfigError);
+  c = {};
+  c.polish_heat_evaluations = c.polish_evaluations + 1;
+  EXPECT_THROW(c.validate(), ConfigError);
+  c.polish_heat_evaluations = -1;
   EXPECT_THROW(c.validate(), ConfigError);
 }
 
