@@ -241,28 +241,34 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   const std::optional<ScanScorer> sampler =
       stride > 1 ? std::optional<ScanScorer>(std::in_place, fine, points, stride, config_.unknown_value) : std::nullopt;
   // Each start's random phase, then their polishes race: each gets a few
-  // rounds, then the leader finishes alone. The polish is the costlier part,
-  // and a start behind after a few rounds rarely overtakes.
-  std::vector<Polish> polishes;
+  // rounds, then the leader finishes alone with what its start has left
+  // (a random phase that converged early leaves its polish more). The polish
+  // is the costlier part, and a start behind after a few rounds rarely overtakes.
+  struct Racer {
+    Polish polish;
+    int left;  // evaluations of its start's budget not yet spent
+  };
+  std::vector<Racer> racers;
   for (Start& start : starts) {
     Search search{fine_scorer, per_start, motion, sampler ? &*sampler : nullptr};
     double score = search.score(start.pose);
     random_phase(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
     result.evaluations += search.used;
-    polishes.push_back({start.pose, score, fine.resolution() * 0.5, config_.polish_step_theta});
+    racers.push_back({{start.pose, score, fine.resolution() * 0.5, config_.polish_step_theta}, per_start - search.used});
   }
-  const int heat = polishes.size() > 1 ? config_.polish_heat_evaluations : 0;
-  for (Polish& polish : polishes) {
-    Search search{fine_scorer, heat, motion};
-    polish.run(search);
+  const auto run = [&](Racer& racer, int budget) {
+    Search search{fine_scorer, std::min(budget, racer.left), motion};
+    racer.polish.run(search);
+    racer.left -= search.used;
     result.evaluations += search.used;
-  }
-  Polish& leader = *std::max_element(polishes.begin(), polishes.end(),
-                                     [](const Polish& a, const Polish& b) { return a.best_score < b.best_score; });
-  Search search{fine_scorer, config_.polish_evaluations - heat, motion};
-  leader.run(search);
-  result.evaluations += search.used;
-  result.pose = leader.best;
+  };
+  if (racers.size() > 1)
+    for (Racer& racer : racers) run(racer, config_.polish_heat_evaluations);
+  Racer& leader = *std::max_element(racers.begin(), racers.end(), [](const Racer& a, const Racer& b) {
+    return a.polish.best_score < b.polish.best_score;
+  });
+  run(leader, leader.left);
+  result.pose = leader.polish.best;
   result.score = fine_scorer.score(result.pose);  // without the penalty
   result.prior_score = fine_scorer.score(prior);
   return result;
