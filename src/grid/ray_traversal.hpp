@@ -13,19 +13,22 @@ namespace dsswarm {
 
 namespace ray_detail {
 
-// The traversal's state: the current cell and the parametric distance (t in
-// [0, 1] along the segment) to the next crossing of each axis.
+// The traversal's state: the first and last cells and the parametric
+// distance (t in [0, 1] along the segment) to the next crossing of each axis.
 struct RaySteps {
-  CellIndex cell, last;
+  CellIndex first, last;
   int step_x, step_y;
   double delta_x, delta_y;  // t to cross one cell along each axis
   double t_x, t_y;          // t of the next crossing
-  int steps;                // cells to visit at most
+  // Cells to visit: each step moves one cell along x or y, so the last cell,
+  // this many steps away (Manhattan), is reached after exactly this many
+  // steps and no sooner; floating-point edge cases cannot walk further.
+  int steps;
 
   RaySteps(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double resolution) {
     const double inv = 1.0 / resolution;
     const Eigen::Vector2d s = start * inv, e = end * inv;
-    cell = {static_cast<std::int32_t>(std::floor(s.x())), static_cast<std::int32_t>(std::floor(s.y()))};
+    first = {static_cast<std::int32_t>(std::floor(s.x())), static_cast<std::int32_t>(std::floor(s.y()))};
     last = {static_cast<std::int32_t>(std::floor(e.x())), static_cast<std::int32_t>(std::floor(e.y()))};
     const Eigen::Vector2d d = e - s;
     step_x = d.x() > 0 ? 1 : -1;
@@ -33,20 +36,17 @@ struct RaySteps {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     delta_x = d.x() != 0.0 ? std::abs(1.0 / d.x()) : kInf;
     delta_y = d.y() != 0.0 ? std::abs(1.0 / d.y()) : kInf;
-    t_x = d.x() != 0.0 ? ((step_x > 0 ? (cell.x + 1 - s.x()) : (s.x() - cell.x)) * delta_x) : kInf;
-    t_y = d.y() != 0.0 ? ((step_y > 0 ? (cell.y + 1 - s.y()) : (s.y() - cell.y)) * delta_y) : kInf;
-    // The number of cells is bounded by the Manhattan distance: guards
-    // against floating-point edge cases ever looping past the end.
-    steps = std::abs(last.x - cell.x) + std::abs(last.y - cell.y);
+    t_x = d.x() != 0.0 ? ((step_x > 0 ? (first.x + 1 - s.x()) : (s.x() - first.x)) * delta_x) : kInf;
+    t_y = d.y() != 0.0 ? ((step_y > 0 ? (first.y + 1 - s.y()) : (s.y() - first.y)) * delta_y) : kInf;
+    steps = std::abs(last.x - first.x) + std::abs(last.y - first.y);
   }
-  // Steps into the next cell; returns whether it was the neighbour along x (else along y).
+  // Moves the crossings on by one cell; returns whether the next cell is the
+  // neighbour along x (else along y).
   bool advance() {
     if (t_x < t_y) {
-      cell.x += step_x;
       t_x += delta_x;
       return true;
     }
-    cell.y += step_y;
     t_y += delta_y;
     return false;
   }
@@ -57,9 +57,11 @@ struct RaySteps {
 template <typename Visit>
 void traverse_ray(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double resolution, Visit&& visit) {
   ray_detail::RaySteps r(start, end, resolution);
-  for (int i = 0; i < r.steps && !(r.cell == r.last); ++i) {
-    visit(r.cell);
-    r.advance();
+  CellIndex cell = r.first;
+  for (int i = 0; i < r.steps; ++i) {
+    visit(cell);
+    if (r.advance()) cell.x += r.step_x;
+    else cell.y += r.step_y;
   }
 }
 
@@ -73,12 +75,13 @@ void traverse_ray_by_tile(const Eigen::Vector2d& start, const Eigen::Vector2d& e
                           EnterTile&& enter_tile, Visit&& visit) {
   constexpr std::int32_t kLast = DsGrid::kTileSize - 1;
   ray_detail::RaySteps r(start, end, resolution);
-  if (r.steps == 0 || r.cell == r.last) return;
-  enter_tile(r.cell);
-  int local = DsGrid::local_index(r.cell);
-  std::int32_t lx = r.cell.x & kLast, ly = r.cell.y & kLast;  // the cell's place in its tile
+  if (r.steps == 0) return;
+  enter_tile(r.first);
+  std::int32_t tile_x = r.first.x & ~kLast, tile_y = r.first.y & ~kLast;  // the tile's lower-left cell
+  std::int32_t lx = r.first.x & kLast, ly = r.first.y & kLast;            // the cell's place in it
+  int local = DsGrid::local_index(r.first);
   const int row_step = r.step_y * DsGrid::kTileSize;
-  for (int i = 0; i < r.steps && !(r.cell == r.last); ++i) {
+  for (int i = 0; i < r.steps; ++i) {
     visit(local);
     if (r.advance()) {
       lx += r.step_x;
@@ -88,10 +91,12 @@ void traverse_ray_by_tile(const Eigen::Vector2d& start, const Eigen::Vector2d& e
       local += row_step;
     }
     if ((lx | ly) & ~kLast) {  // left the tile: lx or ly is -1 or kTileSize
+      tile_x += lx & ~kLast;  // -kTileSize, 0 or +kTileSize
+      tile_y += ly & ~kLast;
       lx &= kLast;
       ly &= kLast;
       local = (ly << DsGrid::kTileBits) | lx;
-      if (i + 1 < r.steps && !(r.cell == r.last)) enter_tile(r.cell);  // only tiles with cells to visit
+      if (i + 1 < r.steps) enter_tile({tile_x + lx, tile_y + ly});  // only tiles with cells to visit
     }
   }
 }
