@@ -49,7 +49,7 @@ void ScanScorer::place(const Pose2& pose) const {
   std::int32_t* iy = iy_.data();
   float* ax = ax_.data();
   float* ay = ay_.data();
-  std::int32_t* tile = tile_.data();
+  std::uint32_t* tile = tile_.data();
   std::int32_t* local = local_.data();
   constexpr std::int32_t kBits = DsGrid::kTileBits, kLast = DsGrid::kTileSize - 1;
   for (std::size_t i = 0; i < n; ++i) {
@@ -63,12 +63,14 @@ void ScanScorer::place(const Pose2& pose) const {
   // A loop of its own: with more arrays in one loop the compiler no longer vectorises it.
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t cx = ix[i], cy = iy[i];
-    // The tile's coordinates in one number: 16 bits each tell apart every
-    // tile within kTileSize · 2^16 cells (hundreds of km), far beyond a scan.
-    tile[i] = ((cy >> kBits) << 16) | ((cx >> kBits) & 0xffff);
     const std::int32_t lx = cx & kLast, ly = cy & kLast;
-    const std::int32_t straddles = (lx == kLast) | (ly == kLast);  // no branch: the loop stays vectorised
-    local[i] = ((ly << kBits) | lx) | -straddles;
+    const std::uint32_t straddles = (lx == kLast) | (ly == kLast);  // no branch: the loop stays vectorised
+    // The tile's coordinates in one number, 15 and 16 bits (they tell apart
+    // every tile within kTileSize · 2^15 cells, far beyond a scan), and in
+    // the top bit whether the block straddles tiles.
+    tile[i] = (static_cast<std::uint32_t>((cy >> kBits) & 0x7fff) << 16) |
+              static_cast<std::uint32_t>((cx >> kBits) & 0xffff) | (straddles << 31);
+    local[i] = (ly << kBits) | lx;
   }
 }
 
@@ -78,7 +80,8 @@ void ScanScorer::gather() const {
   static const std::array<PackedMass, DsGrid::kTileCells> kNothing{};
   const std::size_t n = x_.size();
   if (n == 0) return;
-  std::int32_t current = tile_[0];
+  // The first point's tile, never a straddling key: those always take the slow path.
+  std::uint32_t current = tile_[0] & 0x7fffffffU;
   const PackedMass* cells = grid_->tile_cells({ix_[0], iy_[0]});
   if (!cells) cells = kNothing.data();
   // Plain pointers: the compiler then keeps them in registers, not reloading
@@ -86,19 +89,19 @@ void ScanScorer::gather() const {
   std::int32_t* const occupied[4] = {occupied_[0].data(), occupied_[1].data(), occupied_[2].data(),
                                      occupied_[3].data()};
   std::int32_t* const free[4] = {free_[0].data(), free_[1].data(), free_[2].data(), free_[3].data()};
-  const std::int32_t* const tile = tile_.data();
+  const std::uint32_t* const tile = tile_.data();
   const std::int32_t* const local = local_.data();
   for (std::size_t i = 0; i < n; ++i) {
-    if (local[i] < 0) {  // the 2×2 block straddles tiles
-      PackedMass q[4];
-      grid_->packed_quad({ix_[i], iy_[i]}, q);
-      for (std::size_t j = 0; j < 4; ++j) {
-        occupied[j][i] = q[j].occupied;
-        if constexpr (kWithFree) free[j][i] = q[j].free;
-      }
-      continue;
-    }
     if (tile[i] != current) {
+      if (tile[i] >> 31) {  // the 2×2 block straddles tiles
+        PackedMass q[4];
+        grid_->packed_quad({ix_[i], iy_[i]}, q);
+        for (std::size_t j = 0; j < 4; ++j) {
+          occupied[j][i] = q[j].occupied;
+          if constexpr (kWithFree) free[j][i] = q[j].free;
+        }
+        continue;
+      }
       current = tile[i];
       cells = grid_->tile_cells({ix_[i], iy_[i]});
       if (!cells) cells = kNothing.data();

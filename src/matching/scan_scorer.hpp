@@ -54,7 +54,8 @@ class ScanScorer {
   float unknown_value_;
   mutable std::vector<std::int32_t> ix_, iy_;  // scratch for place()
   mutable std::vector<float> ax_, ay_;
-  mutable std::vector<std::int32_t> tile_, local_;  // each point's tile key, index in it (-1: block straddles tiles)
+  mutable std::vector<std::uint32_t> tile_;  // each point's tile key (top bit: its block straddles tiles)
+  mutable std::vector<std::int32_t> local_;  // the block's lower-left cell's index in its tile
   mutable std::array<std::vector<std::int32_t>, 4> occupied_, free_;  // scratch for gather()
 };
 
