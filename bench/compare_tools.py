@@ -160,6 +160,7 @@ def parse_callgrind(annotate_text):
 def short_name(function):
     """'file:ns::f(args)' -> 'ns::f'."""
     name = function.split(":", 1)[1] if re.match(r"^[^:]*:", function) and not function.startswith("dsswarm::") else function
+    name = name.replace("(anonymous namespace)::", "")  # else it would leave 'ns::::f'
     depth, out = 0, []
     for ch in name:  # drop argument lists and template arguments
         if ch in "(<":
