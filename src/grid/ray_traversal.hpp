@@ -13,10 +13,10 @@ namespace dsswarm {
 
 namespace ray_detail {
 
-// The traversal's state: the first and last cells and the parametric
-// distance (t in [0, 1] along the segment) to the next crossing of each axis.
+// The traversal's state: the first cell and the parametric distance (t in
+// [0, 1] along the segment) to the next crossing of each axis.
 struct RaySteps {
-  CellIndex first, last;
+  CellIndex first;
   int step_x, step_y;
   double delta_x, delta_y;  // t to cross one cell along each axis
   double t_x, t_y;          // t of the next crossing
@@ -29,7 +29,7 @@ struct RaySteps {
     const double inv = 1.0 / resolution;
     const Eigen::Vector2d s = start * inv, e = end * inv;
     first = {static_cast<std::int32_t>(std::floor(s.x())), static_cast<std::int32_t>(std::floor(s.y()))};
-    last = {static_cast<std::int32_t>(std::floor(e.x())), static_cast<std::int32_t>(std::floor(e.y()))};
+    const CellIndex last{static_cast<std::int32_t>(std::floor(e.x())), static_cast<std::int32_t>(std::floor(e.y()))};
     const Eigen::Vector2d d = e - s;
     step_x = d.x() > 0 ? 1 : -1;
     step_y = d.y() > 0 ? 1 : -1;

@@ -157,11 +157,16 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
 void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
                                      double& sigma_th) {
   random_phase(search, level, best, best_score, sigma_xy, sigma_th);
-  Polish polish{best, best_score, search.grid().resolution() * 0.5,
-                config_.polish_step_theta * static_cast<double>(1 << level)};
+  Polish polish = polish_from(best, best_score, search.grid(), level);
   polish.run(search);
   best = polish.best;
   best_score = polish.best_score;
+}
+
+// The polish's first steps: half a cell of the level's grid, and the
+// heading step doubled per level above the finest.
+Polish MonteCarloMatcher::polish_from(const Pose2& pose, double score, const DsGrid& grid, int level) const {
+  return {pose, score, grid.resolution() * 0.5, config_.polish_step_theta * static_cast<double>(1 << level)};
 }
 
 void MonteCarloMatcher::random_phase(Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
@@ -254,7 +259,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
     double score = search.score(start.pose);
     random_phase(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
     result.evaluations += search.used;
-    racers.push_back({{start.pose, score, fine.resolution() * 0.5, config_.polish_step_theta}, per_start - search.used});
+    racers.push_back({polish_from(start.pose, score, fine, 0), per_start - search.used});
   }
   const auto run = [&](Racer& racer, int budget) {
     Search search{fine_scorer, std::min(budget, racer.left), motion};

@@ -18,6 +18,7 @@ namespace dsswarm {
 
 namespace matcher_detail {
 struct Search;
+struct Polish;
 }
 
 struct MatcherConfig {
@@ -83,6 +84,8 @@ class MonteCarloMatcher {
   // less its polish share is spent (or, on the finest level, the spread collapsed).
   void random_phase(matcher_detail::Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
                     double& sigma_th);
+  // A polish starting at `pose` with the first steps of `level` (whose grid is `grid`).
+  matcher_detail::Polish polish_from(const Pose2& pose, double score, const DsGrid& grid, int level) const;
 
   MatcherConfig config_;
   Rng rng_;
