@@ -100,6 +100,44 @@ class LevelWriter {
   std::int32_t tile_x_ = std::numeric_limits<std::int32_t>::min(), tile_y_ = tile_x_;
 };
 
+// Hits written a run at a time: consecutive hits that land on the same 2×2
+// block of cells (the same cell, for unspread hits) combine first, and the
+// block is written once per run. Pure occupied masses s combine by Dempster's
+// rule to 1 − Π(1 − s) (no conflict), and the rule is associative, so a cell
+// ends where writing each hit in turn would leave it, up to rounding and the
+// discount on near-certain cells. Along a wall near the lidar several hits
+// fall in one cell.
+class HitRuns {
+ public:
+  HitRuns(LevelWriter& writer, const EvidenceModel& ev) : writer_(writer), ev_(ev) {}
+  // A hit's occupied mass on each cell of the block with lower-left `corner` (DsGrid::quad order).
+  void add(CellIndex corner, const std::array<float, 4>& shares) {
+    if (open_ && corner != corner_) flush();
+    corner_ = corner;
+    open_ = true;
+    for (std::size_t k = 0; k < 4; ++k) kept_[k] *= 1.0f - shares[k];
+  }
+  void flush() {
+    if (!open_) return;
+    const CellIndex c = corner_;
+    const CellIndex cells[4] = {c, {c.x + 1, c.y}, {c.x, c.y + 1}, {c.x + 1, c.y + 1}};
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (kept_[k] >= 1.0f) continue;
+      const DsMass run{1.0f - kept_[k], 0.0f};
+      writer_.apply(cells[k], [&](const DsMass& m) { return ev_.update(m, run); });
+    }
+    kept_ = {1.0f, 1.0f, 1.0f, 1.0f};
+    open_ = false;
+  }
+
+ private:
+  LevelWriter& writer_;
+  const EvidenceModel& ev_;
+  CellIndex corner_{};
+  std::array<float, 4> kept_{1.0f, 1.0f, 1.0f, 1.0f};  // Π(1 − s) per cell of the run
+  bool open_ = false;
+};
+
 // A beam's pass, apply(c, update_passed), in N maps at once, minus the cells
 // it leaves as they are. N is fixed at compile time so that the current
 // tiles stay in registers: every free cell of every beam comes through here.
@@ -214,26 +252,23 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
         });
       }
     }
+    HitRuns runs(writer, ev);
     for (const Eigen::Vector2d& h : hits) {
       if (!splat) {
-        writer.apply(grid.cell_of(h), [&](const DsMass& m) { return ev.update(m, hit); });
+        runs.add(grid.cell_of(h), {hit.occupied, 0.0f, 0.0f, 0.0f});
         continue;
       }
       // Spread the hit over the four nearest cells with bilinear weights. The
       // scorer reads cells back with bilinear interpolation, so a hit seen
-      // through both is a tent centred exactly on the point: coarse cells no
+      // through both is a tent centred exactly on its point: coarse cells no
       // longer pull scans towards their centres (a bias of up to half a cell,
       // the same for every wall of one orientation).
       const BilinearPoint b = bilinear_point(h.x(), h.y(), 1.0 / grid.resolution());
-      const std::array<float, 4> weights = b.weights();
-      const CellIndex c = b.corner;
-      const CellIndex cells[4] = {c, {c.x + 1, c.y}, {c.x, c.y + 1}, {c.x + 1, c.y + 1}};
-      for (int k = 0; k < 4; ++k) {
-        if (weights[k] <= 0.0f) continue;
-        const DsMass share{hit.occupied * weights[k], 0.0f};
-        writer.apply(cells[k], [&](const DsMass& m) { return ev.update(m, share); });
-      }
+      std::array<float, 4> shares = b.weights();
+      for (float& w : shares) w *= hit.occupied;
+      runs.add(b.corner, shares);
     }
+    runs.flush();
   }
 }
 

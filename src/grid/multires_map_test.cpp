@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "grid/sampling.hpp"
+
 namespace dsswarm {
 namespace {
 
@@ -33,6 +35,40 @@ TEST(MultiResMap, RepeatedPassesGiveWhatEachPassGivesOneByOne) {
   MultiResMap map(MapConfig{0.05, 1, {}, false, false});
   for (int k = 0; k < 400; ++k) map.insert_scan(Pose2(0.01, 0.01, 0.0), Pose2(), beam);
   EXPECT_NEAR(map.level(0).at(crossed).free, 1.0f - ev.min_unknown, 1e-3f);
+}
+
+// Hits are written a run at a time: consecutive hits on one cell (or one
+// 2×2 block, on coarse levels) combine before the write. The cell must end
+// as Dempster's rule applied hit by hit leaves it, runs broken up or not.
+TEST(MultiResMap, HitsInOneCellCombineAsWrittenOneByOne) {
+  const EvidenceModel ev;
+  // Three returns in the cell around (2.02, 0.02), one elsewhere, then one more in the first cell.
+  const std::vector<ScanPoint> hits = {{2.01f, 0.01f, 1.0f}, {2.02f, 0.02f, 1.0f}, {2.03f, 0.03f, 1.0f},
+                                       {2.01f, 0.6f, 1.0f},  {2.02f, 0.01f, 1.0f}};
+  MapConfig config{0.05, 2, {}, false, false};
+  config.surface_gap = 0.0;  // hits alone
+  MultiResMap map(config);
+  map.insert_scan(Pose2(), Pose2(), hits);
+  DsMass expected = DsMass::vacuous();
+  for (int k = 0; k < 4; ++k) expected = ev.update(expected, ev.hit());
+  const DsGrid& fine = map.level(0);
+  EXPECT_NEAR(fine.at(fine.cell_of({2.02, 0.02})).occupied, expected.occupied, 2e-4f);
+  EXPECT_NEAR(fine.at(fine.cell_of({2.01, 0.6})).occupied, ev.hit_occupied, 2e-4f);
+  // Coarse level: each hit spreads over four cells; their sum of shares, combined, for each.
+  const DsGrid& coarse = map.level(1);
+  for (const CellIndex c : {CellIndex{19, -1}, CellIndex{20, -1}, CellIndex{19, 0}, CellIndex{20, 0}}) {
+    DsMass cell = DsMass::vacuous();
+    for (const ScanPoint& p : hits) {
+      const BilinearPoint b = bilinear_point(p.x, p.y, 1.0 / coarse.resolution());
+      const std::array<float, 4> w = b.weights();
+      for (int k = 0; k < 4; ++k) {
+        const CellIndex at{b.corner.x + (k & 1), b.corner.y + (k >> 1)};
+        if (at == c && w[static_cast<std::size_t>(k)] > 0.0f)
+          cell = ev.update(cell, {ev.hit_occupied * w[static_cast<std::size_t>(k)], 0.0f});
+      }
+    }
+    EXPECT_NEAR(coarse.at(c).occupied, cell.occupied, 2e-4f) << c.x << "," << c.y;
+  }
 }
 
 TEST(MultiResMap, BeamMarksHitOccupiedAndPathFreeOnEveryLevel) {
