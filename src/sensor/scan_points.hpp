@@ -31,4 +31,12 @@ std::vector<ScanPoint> scan_to_points(const LaserScan& scan, const PointWeightCo
 // The weight of a point at (x, y) in the robot base frame.
 double point_weight(double x, double y, const PointWeightConfig& config);
 
+// `points` with each run of consecutive points lying within `distance` of the
+// run's first point made one point, at their weighted centroid and with
+// their summed weight (the total weight is kept). Near the lidar its beams
+// fall several to a grid cell; scoring them one by one costs time and tells
+// the matcher nothing a single point there does not. `distance` <= 0 keeps
+// every point.
+std::vector<ScanPoint> merge_close_points(const std::vector<ScanPoint>& points, double distance);
+
 }  // namespace dsswarm
