@@ -20,6 +20,10 @@ void MatcherConfig::validate() const {
   if (fine_search_stride < 1 || fine_search_stride > 16)
     throw ConfigError("matcher.fine_search_stride must be in [1, 16]");
   if (coarse_stride < 1 || coarse_stride > 16) throw ConfigError("matcher.coarse_stride must be in [1, 16]");
+  if (!(fine_merge_cells >= 0.0 && fine_merge_cells <= 4.0))
+    throw ConfigError("matcher.fine_merge_cells must be in [0, 4]");
+  if (!(coarse_merge_cells >= 0.0 && coarse_merge_cells <= 4.0))
+    throw ConfigError("matcher.coarse_merge_cells must be in [0, 4]");
   if (polish_heat_evaluations < 0 || polish_heat_evaluations > polish_evaluations)
     throw ConfigError("matcher.polish_heat_evaluations must be in [0, matcher.polish_evaluations]");
 }
@@ -135,11 +139,12 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
     if (!duplicate) distinct.push_back(p);
   }
   if (distinct.empty()) return {};
+  const LevelPoints level_points = merge_per_level(map, points);
   MatchResult best;
   int evaluations = 0;
   double first_prior_score = 0.0;
   for (std::size_t i = 0; i < distinct.size(); ++i) {
-    const MatchResult r = match_from(map, points, distinct[i]);
+    const MatchResult r = match_from(map, level_points, distinct[i]);
     evaluations += r.evaluations;
     if (i == 0) first_prior_score = r.prior_score;
     if (i == 0 || r.score > best.score) best = r;
@@ -151,7 +156,17 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
 
 MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<ScanPoint>& points,
                                      const Pose2& prior) {
-  return match_from(map, points, prior);
+  return match_from(map, merge_per_level(map, points), prior);
+}
+
+MonteCarloMatcher::LevelPoints MonteCarloMatcher::merge_per_level(const MultiResMap& map,
+                                                                  const std::vector<ScanPoint>& points) const {
+  LevelPoints merged;
+  for (int level = 0; level < map.levels(); ++level) {
+    const double cells = level == 0 ? config_.fine_merge_cells : config_.coarse_merge_cells;
+    merged.push_back(merge_close_points(points, cells * map.level(level).resolution()));
+  }
+  return merged;
 }
 
 void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
@@ -199,11 +214,10 @@ void MonteCarloMatcher::random_phase(Search& search, int level, Pose2& best, dou
   if (search.sampler) best_score = search.score(best);
 }
 
-MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vector<ScanPoint>& points,
-                                          const Pose2& prior) {
+MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoints& points, const Pose2& prior) {
   MatchResult result;
   result.pose = prior;
-  if (points.empty()) return result;
+  if (points.front().empty()) return result;
 
   const int levels = map.levels();
   // Coarse levels are cheap to search but only place the scan roughly; give
@@ -216,7 +230,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   double sigma_xy = config_.sigma_xy, sigma_th = config_.sigma_theta;
   for (int level = levels - 1; level >= 1; --level) {
     const auto stride = static_cast<std::size_t>(config_.coarse_stride) << std::min(level - 1, 1);
-    const ScanScorer scorer(map.level(level), points, stride, config_.unknown_value);
+    const ScanScorer scorer(map.level(level), points[static_cast<std::size_t>(level)], stride, config_.unknown_value);
     Search search{scorer, coarse_budget, motion};
     double score = search.score(coarse_best);
     search_level(search, level, coarse_best, score, sigma_xy, sigma_th);
@@ -241,10 +255,12 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const std::vec
   std::vector<Start> starts{{coarse_best, sigma_xy, sigma_th}};
   if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
   const int per_start = fine_budget / static_cast<int>(starts.size());
-  const ScanScorer fine_scorer(fine, points, 1, config_.unknown_value);
+  const std::vector<ScanPoint>& fine_points = points.front();
+  const ScanScorer fine_scorer(fine, fine_points, 1, config_.unknown_value);
   const auto stride = static_cast<std::size_t>(config_.fine_search_stride);
   const std::optional<ScanScorer> sampler =
-      stride > 1 ? std::optional<ScanScorer>(std::in_place, fine, points, stride, config_.unknown_value) : std::nullopt;
+      stride > 1 ? std::optional<ScanScorer>(std::in_place, fine, fine_points, stride, config_.unknown_value)
+                 : std::nullopt;
   // Each start's random phase, then their polishes race: each gets a few
   // rounds, then the leader finishes alone with what its start has left
   // (a random phase that converged early leaves its polish more). The polish

@@ -41,9 +41,18 @@ struct MatcherConfig {
   // to find the basin); the polish always scores all of them. 1 (all points
   // throughout) by default: see docs/performance.md for what 2 gains and costs.
   int fine_search_stride = 1;
-  // The coarse levels score every n-th point (the second coarse level and
-  // beyond every 2n-th): their cells are wide and they only place the scan roughly.
-  int coarse_stride = 2;
+  // Near the lidar several beams end in one cell: the finest level scores
+  // each run of consecutive points within this share of its cell as one
+  // point at their weighted centroid (merge_close_points), the coarse levels
+  // likewise within coarse_merge_cells of their own cells. 0 scores every
+  // point. The defaults score about 60% of the finest level's points and a
+  // fifth of the coarse levels' (docs/performance.md).
+  double fine_merge_cells = 0.75;
+  double coarse_merge_cells = 1.5;
+  // The coarse levels then score every n-th of their points (the second
+  // coarse level and beyond every 2n-th): their cells are wide and they
+  // only place the scan roughly.
+  int coarse_stride = 1;
   double polish_step_theta = 0.005;  // rad, first θ step on the finest level (doubles per level)
   // Motion prior: every candidate's score is reduced by
   // prior_weight × (|Δxy|²/prior_sigma_xy² + Δθ²/prior_sigma_theta²) relative
@@ -76,7 +85,10 @@ class MonteCarloMatcher {
   const MatcherConfig& config() const { return config_; }
 
  private:
-  MatchResult match_from(const MultiResMap& map, const std::vector<ScanPoint>& points, const Pose2& prior);
+  // The scan's points for each level (index 0 the finest), merged as the configuration says.
+  using LevelPoints = std::vector<std::vector<ScanPoint>>;
+  LevelPoints merge_per_level(const MultiResMap& map, const std::vector<ScanPoint>& points) const;
+  MatchResult match_from(const MultiResMap& map, const LevelPoints& points, const Pose2& prior);
   // Random phase then coordinate ascent on one level, updating the best pose and the spreads.
   void search_level(matcher_detail::Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
                     double& sigma_th);
