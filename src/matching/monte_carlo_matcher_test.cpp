@@ -115,6 +115,17 @@ TEST(MonteCarloMatcher, RecoversPoseWhateverThePolishHeat) {
   }
 }
 
+// Merged points (the default) and every point place the scan alike; merging
+// wider still places it, on fewer points.
+TEST(MonteCarloMatcher, RecoversPoseWhateverTheMerge) {
+  for (const double cells : {0.0, 0.75, 2.0}) {
+    MatcherConfig config;
+    config.fine_merge_cells = cells;
+    config.coarse_merge_cells = 2 * cells;
+    EXPECT_GE(recovered_poses(config), 18) << "merge " << cells;
+  }
+}
+
 TEST(MonteCarloMatcher, SameSeedSameResult) {
   const MultiResMap map = map_from_views({Pose2(0, 0, 0), Pose2(3, 2, 1.0)});
   const auto pts = scan_to_points(scan_from(Pose2(0.2, 0.1, 0.05)));
