@@ -42,7 +42,11 @@ struct LoopSearchConfig {
   // each costs a byte per cell of the searched area.
   int max_depth = 5;
   double min_score = 0.2;   // branch-and-bound score (mean occupied − free under the points)
-  MatcherConfig refine{.evaluations = 400, .sigma_xy = 0.05, .sigma_theta = 0.02, .prior_weight = 0.0};
+  // Every point on every level (no merge, the coarse levels' old stride): a
+  // wrong placement here is a wrong closure or merge, not one scan's error.
+  MatcherConfig refine{.evaluations = 400, .sigma_xy = 0.05, .sigma_theta = 0.02,
+                       .fine_merge_cells = 0.0, .coarse_merge_cells = 0.0, .coarse_stride = 2,
+                       .prior_weight = 0.0};
   double min_known = 0.5;
   double min_inliers = 0.75;
   double min_same_side = 0.8;

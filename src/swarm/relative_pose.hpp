@@ -49,7 +49,11 @@ struct RelativePoseConfig {
   // Two placements are distinct modes when this far apart (either way).
   double mode_separation_xy = 0.5;      // m
   double mode_separation_theta = 0.26;  // rad (15°)
-  MatcherConfig refine{.evaluations = 600, .sigma_xy = 0.15, .sigma_theta = 0.04, .prior_weight = 0.0};
+  // Every point on every level (no merge, the coarse levels' old stride): a
+  // wrong placement here is a wrong closure or merge, not one scan's error.
+  MatcherConfig refine{.evaluations = 600, .sigma_xy = 0.15, .sigma_theta = 0.04,
+                       .fine_merge_cells = 0.0, .coarse_merge_cells = 0.0, .coarse_stride = 2,
+                       .prior_weight = 0.0};
 
   void validate() const;  // throws ConfigError naming the field
 };
