@@ -53,7 +53,7 @@ std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, Executor& backgrou
   scans_before = c.scans_processed;
   if (!c.trajectory.empty()) resumed_at = c.trajectory.back().timestamp;
   trajectory = std::move(c.trajectory);
-  return std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose, &background);
+  return std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose, &background, c.odometry);
 }
 
 std::uint64_t encounter_of(const protocol::Body& body) {
@@ -369,6 +369,7 @@ void AgentRuntime::checkpoint(bool wait) {
     k.snapshot = a.snapshot();
     k.pose = a.slam().pose();
     k.stamp = a.last_scan() ? a.last_scan()->timestamp : 0.0;
+    if (a.last_scan()) k.odometry = a.last_scan()->odometry;
     k.scans_processed = scans_before_ + processed_.load();
     k.trajectory = trajectory;
     return k;

@@ -175,7 +175,15 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
     AgentRuntime runtime(o, feed, *link);
     std::atomic<bool> stop{false};
     runtime.run(stop);
-    version_before = read_checkpoint(out, "a").snapshot.layers.at(0).version;
+    const Checkpoint k = read_checkpoint(out, "a");
+    version_before = k.snapshot.layers.at(0).version;
+    // The odometry reading at the saved pose, for the resumed robot's first prediction.
+    const auto at_stamp = std::find_if(first.scans.begin(), first.scans.end(),
+                                       [&](const LaserScan& scan) { return scan.timestamp == k.stamp; });
+    ASSERT_NE(at_stamp, first.scans.end());
+    ASSERT_TRUE(at_stamp->odometry && k.odometry);
+    EXPECT_DOUBLE_EQ(k.odometry->x, at_stamp->odometry->x);
+    EXPECT_DOUBLE_EQ(k.odometry->theta, at_stamp->odometry->theta);
   }
   ASSERT_GT(version_before, 0u);
   PacedFeed feed(second.scans, second.clock, paced(5.0, 64));
@@ -297,7 +305,9 @@ TEST(AgentRuntime, ACheckpointTornByAKillResumesFromItsNewestPoses) {
   c.pose = c.trajectory.back().pose;
   c.stamp = c.trajectory.back().timestamp;
   c.scans_processed = 10;
+  c.odometry = Pose2{5.0, 6.0, 0.5};
   write_checkpoint(out, c);
+  EXPECT_NEAR(read_checkpoint(out, "a").odometry.value_or(Pose2{}).y, 6.0, 1e-12);
   const std::string older_state = [&] {
     std::ifstream in(out / "checkpoint.json");
     return std::string(std::istreambuf_iterator<char>(in), {});
@@ -311,6 +321,7 @@ TEST(AgentRuntime, ACheckpointTornByAKillResumesFromItsNewestPoses) {
   EXPECT_EQ(r.scans_processed, 14u);
   EXPECT_DOUBLE_EQ(r.stamp, 113.0);
   EXPECT_NEAR(r.pose.x, 1.3, 1e-9);
+  EXPECT_FALSE(r.odometry) << "the state file's odometry reading belongs to its older pose";
 }
 
 // A link whose messages to one robot are held up (a DDS writer waiting for

@@ -20,6 +20,13 @@ fs::path map_file(const fs::path& dir) { return dir / "checkpoint.dsmap"; }
 fs::path state_file(const fs::path& dir) { return dir / "checkpoint.json"; }
 fs::path trajectory_file(const fs::path& dir) { return dir / "trajectory.tum"; }
 
+Pose2 pose_field(const nlohmann::json& j, const char* field, const fs::path& file) {
+  const auto p = j.at(field).get<std::vector<double>>();
+  if (p.size() != 3 || !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    throw InputError(fmt::format("{}: {} must be three finite numbers", file.string(), field));
+  return {p[0], p[1], p[2]};
+}
+
 }  // namespace
 
 void write_checkpoint(const fs::path& dir, const Checkpoint& c) {
@@ -31,6 +38,7 @@ void write_checkpoint(const fs::path& dir, const Checkpoint& c) {
                    {"stamp", c.stamp},
                    {"scans_processed", c.scans_processed},
                    {"own_version", c.snapshot.layers.empty() ? 0 : c.snapshot.layers.front().version}};
+  if (c.odometry) j["odometry"] = {c.odometry->x, c.odometry->y, c.odometry->theta};
   write_file_atomically(state_file(dir), j.dump(2) + "\n");
 }
 
@@ -50,10 +58,8 @@ Checkpoint read_checkpoint(const fs::path& dir, const std::string& name) {
   Checkpoint c;
   try {
     c.name = j.at("name").get<std::string>();
-    const auto p = j.at("pose").get<std::vector<double>>();
-    if (p.size() != 3 || !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw InputError(state.string() + ": pose must be three finite numbers");
-    c.pose = {p[0], p[1], p[2]};
+    c.pose = pose_field(j, "pose", state);
+    if (j.contains("odometry")) c.odometry = pose_field(j, "odometry", state);
     c.stamp = j.at("stamp").get<double>();
     c.scans_processed = j.at("scans_processed").get<std::uint64_t>();
   } catch (const nlohmann::json::exception& e) {
@@ -74,6 +80,7 @@ Checkpoint read_checkpoint(const fs::path& dir, const std::string& name) {
     c.scans_processed = c.trajectory.size();
     c.pose = c.trajectory.back().pose;
     c.stamp = c.trajectory.back().timestamp;
+    c.odometry.reset();  // the older pose's reading
   }
   return c;
 }

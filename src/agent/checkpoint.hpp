@@ -19,6 +19,7 @@ struct Checkpoint {
   MapSnapshot snapshot;  // layers[0]: the robot's own map
   Pose2 pose;            // in its own map frame, at `stamp`
   double stamp = 0.0;
+  std::optional<Pose2> odometry;  // the odometry reading at `pose`, when the scans carry it
   std::uint64_t scans_processed = 0;
   Trajectory trajectory;
 };

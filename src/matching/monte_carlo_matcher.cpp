@@ -161,12 +161,18 @@ MatchResult MonteCarloMatcher::match(const MultiResMap& map, const std::vector<S
 
 MonteCarloMatcher::LevelPoints MonteCarloMatcher::merge_per_level(const MultiResMap& map,
                                                                   const std::vector<ScanPoint>& points) const {
-  LevelPoints merged;
+  LevelPoints out;
+  out.merged.reserve(static_cast<std::size_t>(map.levels()));  // no reallocation: `level` points into it
   for (int level = 0; level < map.levels(); ++level) {
     const double cells = level == 0 ? config_.fine_merge_cells : config_.coarse_merge_cells;
-    merged.push_back(merge_close_points(points, cells * map.level(level).resolution()));
+    if (cells > 0.0) {
+      out.merged.push_back(merge_close_points(points, cells * map.level(level).resolution()));
+      out.level.push_back(&out.merged.back());
+    } else {
+      out.level.push_back(&points);
+    }
   }
-  return merged;
+  return out;
 }
 
 void MonteCarloMatcher::search_level(Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,
@@ -217,7 +223,7 @@ void MonteCarloMatcher::random_phase(Search& search, int level, Pose2& best, dou
 MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoints& points, const Pose2& prior) {
   MatchResult result;
   result.pose = prior;
-  if (points.front().empty()) return result;
+  if (points.level.front()->empty()) return result;
 
   const int levels = map.levels();
   // Coarse levels are cheap to search but only place the scan roughly; give
@@ -230,7 +236,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   double sigma_xy = config_.sigma_xy, sigma_th = config_.sigma_theta;
   for (int level = levels - 1; level >= 1; --level) {
     const auto stride = static_cast<std::size_t>(config_.coarse_stride) << std::min(level - 1, 1);
-    const ScanScorer scorer(map.level(level), points[static_cast<std::size_t>(level)], stride, config_.unknown_value);
+    const ScanScorer scorer(map.level(level), *points.level[static_cast<std::size_t>(level)], stride, config_.unknown_value);
     Search search{scorer, coarse_budget, motion};
     double score = search.score(coarse_best);
     search_level(search, level, coarse_best, score, sigma_xy, sigma_th);
@@ -255,7 +261,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   std::vector<Start> starts{{coarse_best, sigma_xy, sigma_th}};
   if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
   const int per_start = fine_budget / static_cast<int>(starts.size());
-  const std::vector<ScanPoint>& fine_points = points.front();
+  const std::vector<ScanPoint>& fine_points = *points.level.front();
   const ScanScorer fine_scorer(fine, fine_points, 1, config_.unknown_value);
   const auto stride = static_cast<std::size_t>(config_.fine_search_stride);
   const std::optional<ScanScorer> sampler =

@@ -87,8 +87,12 @@ class MonteCarloMatcher {
   const MatcherConfig& config() const { return config_; }
 
  private:
-  // The scan's points for each level (index 0 the finest), merged as the configuration says.
-  using LevelPoints = std::vector<std::vector<ScanPoint>>;
+  // The scan's points for each level (index 0 the finest), merged as the
+  // configuration says; a level that does not merge uses the caller's points.
+  struct LevelPoints {
+    std::vector<std::vector<ScanPoint>> merged;
+    std::vector<const std::vector<ScanPoint>*> level;
+  };
   LevelPoints merge_per_level(const MultiResMap& map, const std::vector<ScanPoint>& points) const;
   MatchResult match_from(const MultiResMap& map, const LevelPoints& points, const Pose2& prior);
   // Random phase then coordinate ascent on one level, updating the best pose and the spreads.

@@ -33,8 +33,14 @@ class MotionPredictor {
   // The scan's final pose: moves the anchor (when its odometry is fresh) and
   // the constant-velocity state on.
   void advance(const LaserScan& scan, const Pose2& pose);
-  // Puts the robot at `pose` before its first scan, with no motion history.
-  void start_at(const Pose2& pose) { pose_ = pose; }
+  // Puts the robot at `pose` before its first scan, with no motion history;
+  // with `odometry` (the reading at `pose`, e.g. from a checkpoint) the first
+  // scan is predicted from the odometry increment since then.
+  void start_at(const Pose2& pose, const std::optional<Pose2>& odometry = std::nullopt) {
+    pose_ = pose;
+    anchor_pose_ = pose;
+    anchor_odometry_ = odometry;
+  }
 
   const Pose2& pose() const { return pose_; }  // the last scan's pose
 

@@ -8,6 +8,9 @@ MatcherConfig Recovery::wide(const MatcherConfig& normal) {
   c.sigma_xy = normal.sigma_xy * 3;
   c.sigma_theta = normal.sigma_theta * 4;
   c.patience = normal.patience * 2;
+  // The rare hard case: every point scores (merging trades precision for speed).
+  c.fine_merge_cells = 0.0;
+  c.coarse_merge_cells = 0.0;
   return c;
 }
 

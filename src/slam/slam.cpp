@@ -58,12 +58,13 @@ Slam::Slam(const SlamConfig& config, Executor* background)
       closer_(config.loop_closure, config.map, config.points, config.seed + 2, background),
       background_(background) {}
 
-Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use, Executor* background)
+Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use, Executor* background,
+           const std::optional<Pose2>& start_odometry)
     : Slam(config, background) {
   localize_only_ = use == MapUse::localize;
   submaps_.start_with(std::move(initial), !localize_only_);
   if (!localize_only_) closer_.add_fixed_submap();
-  motion_.start_at(start);
+  motion_.start_at(start, config.use_odometry ? start_odometry : std::nullopt);
   has_initial_map_ = true;
 }
 
@@ -86,7 +87,8 @@ SlamStep Slam::process(const LaserScan& scan) {
   const bool first = processed_ == 0;
   // A new map's frame is the odometry frame; a given map keeps its own.
   if (first && !has_initial_map_ && config_.use_odometry && scan.odometry) motion_.start_at(*scan.odometry);
-  step.prior = first ? motion_.pose() : motion_.predict(scan);
+  // A given map's first scan: the odometry since `start` when it is known.
+  step.prior = first && !has_initial_map_ ? motion_.pose() : motion_.predict(scan);
   const bool measured_prior = !first && motion_.from_odometry(scan);
   ++processed_;
   const bool standing_still = standing_still_.update(scan) && !first;
@@ -181,10 +183,24 @@ MultiResMap Slam::unfinished_map() const {
 
 void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep& step) {
   const MultiResMap& map = matching_map();
-  const MatchResult m = recovery_.locate(map, points, step.prior);
+  MatchResult m = recovery_.locate(map, points, step.prior);
+  MatchQuality q = match_quality(map.finest(), points, m.pose);
+  // Odometry that restarted with the robot (back at zero) predicts nonsense:
+  // when the match from it fails, the start itself is searched from too. Not
+  // both always: the better score would often pick an aliased place (a
+  // corridor looks alike all along).
+  const Pose2& start = motion_.pose();
+  if (verifier_.rejects(q) && (start.x != step.prior.x || start.y != step.prior.y || start.theta != step.prior.theta)) {
+    const MatchResult from_start = recovery_.locate(map, points, start);
+    const MatchQuality sq = match_quality(map.finest(), points, from_start.pose);
+    if (sq.inlier_ratio > q.inlier_ratio) {
+      m = from_start;
+      q = sq;
+    }
+  }
   step.pose = m.pose;
   step.score = m.score;
-  step.inlier_ratio = match_quality(map.finest(), points, m.pose).inlier_ratio;
+  step.inlier_ratio = q.inlier_ratio;
   step.matched = true;
   ++matched_;
 }

@@ -110,9 +110,11 @@ class Slam {
   // Starts in `initial` (a saved map, or evidence received from other
   // robots): the first scan is matched against it from `start` (a wide
   // search) instead of founding the map. Extending it, `initial` counts as
-  // own evidence and stays fixed as the first submap.
+  // own evidence and stays fixed as the first submap. `start_odometry`: the
+  // odometry reading at `start` (a resumed robot); the first scan's search
+  // then starts from where the odometry says the robot went since, as well.
   Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, MapUse use = MapUse::extend,
-       Executor* background = nullptr);
+       Executor* background = nullptr, const std::optional<Pose2>& start_odometry = std::nullopt);
 
   SlamStep process(const LaserScan& scan);
   // Waits for background work and runs a last loop-closing round, so that

@@ -90,6 +90,32 @@ TEST(Slam, CorrectsDriftingOdometry) {
   EXPECT_EQ(slam.scans_matched(), d.scans.size() - 1);
 }
 
+// A robot resumed in its map after a gap (a crash, a restart): the odometry
+// reading kept with its last pose says how far it went meanwhile, and the
+// first scan is placed from there; the wide search from the last pose alone
+// cannot reach a robot 3 m further down the corridor.
+TEST(Slam, AResumedRobotIsPlacedFromTheOdometrySinceItsLastPose) {
+  const Drive d = drive();
+  SlamConfig config;
+  config.loop_closure.enabled = false;
+  Slam first(config);
+  Pose2 last;
+  for (std::size_t i = 0; i <= 80; ++i) last = first.process(d.scans[i]).pose;
+  const LaserScan& later = d.scans[110];
+  auto resumed_error = [&](const std::optional<Pose2>& odometry) {
+    Slam resumed(config, first.own_map(), last, MapUse::extend, nullptr, odometry);
+    const SlamStep step = resumed.process(later);
+    EXPECT_TRUE(step.matched);
+    return (step.pose.translation() - d.truth[110].translation()).norm();
+  };
+  const double with_odometry = resumed_error(d.scans[80].odometry);
+  const double from_last_pose = resumed_error(std::nullopt);
+  std::printf("[ resumed  ] 3 m after the last pose: %.3f m off with the odometry, %.3f m without\n", with_odometry,
+              from_last_pose);
+  EXPECT_LT(with_odometry, 0.05);
+  EXPECT_GT(from_last_pose, 1.0);
+}
+
 // Loop closure is on by default: the drive is cut into submaps and searched
 // for closures; off, one map, as before submaps.
 TEST(Slam, SubmapsOnlyWithLoopClosure) {

@@ -31,10 +31,10 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, Executor* bac
     : name_(std::move(name)), slam_(config, background), knowledge_(name_) {}
 
 SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose,
-                       Executor* background)
+                       Executor* background, const std::optional<Pose2>& odometry)
     : name_(std::move(name)),
       slam_(config, own_layer_of(saved, name_).map ? layer_evidence(own_layer_of(saved, name_)) : MultiResMap(config.map), pose,
-            MapUse::extend, background),
+            MapUse::extend, background, odometry),
       knowledge_(name_),
       version_base_(own_layer_of(saved, name_).version) {
   knowledge_.restore(saved);

@@ -27,9 +27,10 @@ class SwarmAgent {
   SwarmAgent(std::string name, const SlamConfig& config, Executor* background = nullptr);
   // Continues from a saved snapshot (a checkpoint): its own layer is the map
   // it goes on mapping in, from `pose` (a wide search places the first scan);
-  // the others are what it knew. Its own map's version goes on from the saved one.
+  // the others are what it knew. Its own map's version goes on from the saved
+  // one. `odometry`: the reading at `pose` (see Slam's `start_odometry`).
   SwarmAgent(std::string name, const SlamConfig& config, const MapSnapshot& saved, const Pose2& pose,
-             Executor* background = nullptr);
+             Executor* background = nullptr, const std::optional<Pose2>& odometry = std::nullopt);
 
   SlamStep process(const LaserScan& scan);
   // Waits for loop closing and runs its last round: the trajectory and the
