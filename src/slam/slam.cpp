@@ -186,14 +186,16 @@ void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep&
   MatchResult m = recovery_.locate(map, points, step.prior);
   MatchQuality q = match_quality(map.finest(), points, m.pose);
   // Odometry that restarted with the robot (back at zero) predicts nonsense:
-  // when the match from it fails, the start itself is searched from too. Not
-  // both always: the better score would often pick an aliased place (a
-  // corridor looks alike all along).
+  // when the match from it fails or lands mostly off the map, the start
+  // itself is searched from too, and the match more of whose points land on
+  // walls wins. Not both always: the better score would often pick an
+  // aliased place (a corridor looks alike all along).
   const Pose2& start = motion_.pose();
-  if (verifier_.rejects(q) && (start.x != step.prior.x || start.y != step.prior.y || start.theta != step.prior.theta)) {
+  const bool doubtful = verifier_.rejects(q) || q.known_fraction < config_.verify.min_known;
+  if (doubtful && (start.x != step.prior.x || start.y != step.prior.y || start.theta != step.prior.theta)) {
     const MatchResult from_start = recovery_.locate(map, points, start);
     const MatchQuality sq = match_quality(map.finest(), points, from_start.pose);
-    if (sq.inlier_ratio > q.inlier_ratio) {
+    if (sq.known_fraction * sq.inlier_ratio > q.known_fraction * q.inlier_ratio) {
       m = from_start;
       q = sq;
     }

@@ -114,6 +114,13 @@ TEST(Slam, AResumedRobotIsPlacedFromTheOdometrySinceItsLastPose) {
               from_last_pose);
   EXPECT_LT(with_odometry, 0.05);
   EXPECT_GT(from_last_pose, 1.0);
+
+  // Odometry that restarted meanwhile (its reading at the last pose is from
+  // another run): the search from it fails, the one from the last pose holds.
+  Slam restarted(config, first.own_map(), last, MapUse::extend, nullptr, Pose2{-40.0, 25.0, 2.0});
+  const SlamStep step = restarted.process(d.scans[83]);
+  EXPECT_TRUE(step.matched);
+  EXPECT_LT((step.pose.translation() - d.truth[83].translation()).norm(), 0.05);
 }
 
 // Loop closure is on by default: the drive is cut into submaps and searched
