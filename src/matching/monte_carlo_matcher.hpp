@@ -88,6 +88,9 @@ class MonteCarloMatcher {
   // The scan's points for each level (index 0 the finest), merged as the
   // configuration says; a level that does not merge uses the caller's points.
   struct LevelPoints {
+    LevelPoints() = default;
+    LevelPoints(LevelPoints&&) = default;       // moving keeps `merged`'s buffer: `level` stays valid
+    LevelPoints(const LevelPoints&) = delete;  // a copy's `level` would point into the original
     std::vector<std::vector<ScanPoint>> merged;
     std::vector<const std::vector<ScanPoint>*> level;
   };

@@ -64,7 +64,7 @@ Slam::Slam(const SlamConfig& config, MultiResMap initial, const Pose2& start, Ma
   localize_only_ = use == MapUse::localize;
   submaps_.start_with(std::move(initial), !localize_only_);
   if (!localize_only_) closer_.add_fixed_submap();
-  motion_.start_at(start, config.use_odometry ? start_odometry : std::nullopt);
+  motion_.start_at(start, start_odometry);  // the predictor ignores odometry when use_odometry is off
   has_initial_map_ = true;
 }
 
