@@ -26,30 +26,32 @@ void max_rows(const std::uint8_t* a, const std::uint8_t* b, std::int32_t n, std:
 }
 }  // namespace
 
-BranchAndBoundMatcher::Level BranchAndBoundMatcher::doubled(const Level& prev, std::int32_t s) {
+void BranchAndBoundMatcher::double_into(const Level& prev, std::int32_t s, Level& next) {
   // The block of 2s cells starting at a cell is the four blocks of s starting
   // at it and s cells further along x, y and both: a maximum along x, then
   // along y. It reaches s cells further down-left than the level before.
+  // Every value is written, so the buffers are only grown, never cleared.
   const std::int32_t w = prev.width, h = prev.height;
-  std::vector<std::uint8_t> along_x(static_cast<std::size_t>(w + s) * static_cast<std::size_t>(h));
-  const auto row = [](auto& v, std::int32_t y, std::int32_t width) {
-    return v.data() + static_cast<std::ptrdiff_t>(y) * width;
-  };
-  for (std::int32_t y = 0; y < h; ++y) max_pairs(row(prev.values, y, w), w, s, row(along_x, y, w + s));
-  Level next;
+  along_x_.resize(std::max(along_x_.size(), static_cast<std::size_t>(w + s) * static_cast<std::size_t>(h)));
+  const auto row = [](auto* v, std::int32_t y, std::int32_t width) { return v + static_cast<std::ptrdiff_t>(y) * width; };
+  for (std::int32_t y = 0; y < h; ++y) max_pairs(row(prev.values.data(), y, w), w, s, row(along_x_.data(), y, w + s));
   next.origin = {prev.origin.x - s, prev.origin.y - s};
   next.width = w + s;
   next.height = h + s;
   next.values.resize(static_cast<std::size_t>(next.width) * static_cast<std::size_t>(next.height));
   for (std::int32_t y = 0; y < h + s; ++y)
-    max_rows(y - s >= 0 && y - s < h ? row(along_x, y - s, w + s) : nullptr, y < h ? row(along_x, y, w + s) : nullptr,
-             w + s, next.values.data() + static_cast<std::ptrdiff_t>(y) * (w + s));
-  return next;
+    max_rows(y - s >= 0 && y - s < h ? row(along_x_.data(), y - s, w + s) : nullptr,
+             y < h ? row(along_x_.data(), y, w + s) : nullptr, w + s, row(next.values.data(), y, w + s));
 }
 
 BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy, int max_depth,
-                                             std::optional<CellIndex> region_min, std::optional<CellIndex> region_max)
-    : resolution_(grid.resolution()) {
+                                             std::optional<CellIndex> region_min, std::optional<CellIndex> region_max) {
+  rebuild(grid, max_window_xy, max_depth, region_min, region_max);
+}
+
+void BranchAndBoundMatcher::rebuild(const DsGrid& grid, double max_window_xy, int max_depth,
+                                    std::optional<CellIndex> region_min, std::optional<CellIndex> region_max) {
+  resolution_ = grid.resolution();
   // Blocks of 2^(depth-1) cells at the top cover the window's 2w/res + 1 offsets.
   const double offsets = 2.0 * max_window_xy / resolution_ + 1.0;
   const int depth = std::clamp(1 + static_cast<int>(std::ceil(std::log2(std::max(1.0, offsets)))), 1, max_depth);
@@ -58,7 +60,8 @@ BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_wind
   if (region_min) lo = {std::max(lo.x, region_min->x), std::max(lo.y, region_min->y)};
   if (region_max) hi = {std::min(hi.x, region_max->x), std::min(hi.y, region_max->y)};
   hi = {std::max(hi.x, lo.x), std::max(hi.y, lo.y)};
-  Level base;
+  levels_.resize(static_cast<std::size_t>(depth));
+  Level& base = levels_.front();
   base.origin = lo;
   base.width = hi.x - lo.x;
   base.height = hi.y - lo.y;
@@ -76,15 +79,14 @@ BranchAndBoundMatcher::BranchAndBoundMatcher(const DsGrid& grid, double max_wind
                   static_cast<std::size_t>(c.x - lo.x)] = v;
     }
   });
-  levels_.push_back(std::move(base));
   // Level h (blocks of 2^h cells) from level h-1 by doubling.
-  for (int h = 1; h < depth; ++h) levels_.push_back(doubled(levels_.back(), 1 << (h - 1)));
+  for (std::size_t h = 1; h < levels_.size(); ++h) double_into(levels_[h - 1], std::int32_t{1} << (h - 1), levels_[h]);
 }
 
 std::size_t BranchAndBoundMatcher::memory_bytes() const {
   std::size_t n = 0;
   for (const Level& l : levels_) n += l.values.capacity();
-  return n;
+  return n + along_x_.capacity();
 }
 
 // One match call: the scan discretized per heading, and the depth-first search.

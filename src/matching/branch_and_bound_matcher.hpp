@@ -54,6 +54,14 @@ class BranchAndBoundMatcher {
   BranchAndBoundMatcher(const DsGrid& grid, double max_window_xy, int max_depth = 16,
                         std::optional<CellIndex> region_min = std::nullopt,
                         std::optional<CellIndex> region_max = std::nullopt);
+  // No bounds yet: rebuild() before match().
+  BranchAndBoundMatcher() = default;
+  // The same for another grid, in this matcher's memory: bounds are
+  // megabytes, and faulting fresh pages in for each target cost more than
+  // building them (loop closure builds one per submap it searches).
+  void rebuild(const DsGrid& grid, double max_window_xy, int max_depth = 16,
+               std::optional<CellIndex> region_min = std::nullopt,
+               std::optional<CellIndex> region_max = std::nullopt);
 
   // The best pose within `window` around `prior` scoring more than
   // `min_score`, if any. `points` are in the robot frame; pass few (a couple
@@ -88,11 +96,12 @@ class BranchAndBoundMatcher {
     }
   };
   struct Search;
-  // The level of blocks twice as wide as `prev`'s (blocks of s cells).
-  static Level doubled(const Level& prev, std::int32_t s);
+  // `next`: the level of blocks twice as wide as `prev`'s (blocks of s cells).
+  void double_into(const Level& prev, std::int32_t s, Level& next);
 
-  double resolution_;
-  std::vector<Level> levels_;  // levels_[h]: blocks of 2^h cells
+  double resolution_ = 0.0;
+  std::vector<Level> levels_;       // levels_[h]: blocks of 2^h cells
+  std::vector<std::uint8_t> along_x_;  // double_into's scratch
 };
 
 }  // namespace dsswarm

@@ -135,5 +135,36 @@ TEST(BranchAndBoundMatcher, TheRunnerUpInAnOfficeScoresLess) {
   EXPECT_LT(second->score, best->score);
 }
 
+TEST(BranchAndBoundMatcher, RebuiltForAnotherGridItMatchesAsOneBuiltFresh) {
+  // Rebuilding reuses the bounds' memory: nothing of the grid before may show.
+  const World world = office();
+  Rng rng(11);
+  const MultiResMap small = map_of(world, rng);
+  MultiResMap big;
+  for (const Pose2& p : {Pose2(2, 2, 0.3), Pose2(10, 3, -2.8)}) big.insert_scan(p, Pose2(), scan_at(world, p, rng));
+  // The other map far away, so that stale bounds would be garbage where the search looks.
+  big.insert_scan(Pose2(-30, 40, 0.0), Pose2(), scan_at(world, Pose2(2, 2, 0.3), rng));
+  const Pose2 truth(3.3, 3.1, 0.7);
+  const std::vector<ScanPoint> points = scan_at(world, truth, rng);
+  const Pose2 prior = truth * Pose2(0.2, -0.15, 0.1);
+  BranchAndBoundMatcher reused(big.finest(), 2.5, 9);
+  ASSERT_EQ(reused.depth(), 8);
+  // Fewer levels than before, then as many again.
+  for (const double window : {0.3, 2.5}) {
+    reused.rebuild(small.finest(), window, 9, CellIndex{-20, -20}, CellIndex{260, 220});
+    const BranchAndBoundMatcher fresh(small.finest(), window, 9, CellIndex{-20, -20}, CellIndex{260, 220});
+    EXPECT_EQ(reused.depth(), fresh.depth());
+    const auto a = reused.match(points, prior, {window, 0.15}, 0.1), b = fresh.match(points, prior, {window, 0.15}, 0.1);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a->score, b->score);
+    EXPECT_EQ(a->pose.x, b->pose.x);
+    EXPECT_EQ(a->pose.y, b->pose.y);
+    EXPECT_EQ(a->pose.theta, b->pose.theta);
+    EXPECT_LT(std::hypot(a->pose.x - truth.x, a->pose.y - truth.y), 0.08);
+    for (const Pose2& p : {prior, truth, Pose2(1.0, 1.0, 0.0), Pose2(8.0, 4.0, 1.0)})
+      EXPECT_EQ(reused.score(points, p), fresh.score(points, p));
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm

@@ -200,6 +200,7 @@ void LoopCloser::start_round() {
   nodes_since_round_ = 0;
   queue_backlog();  // nodes searched before: the new ones search every piece anyway
   auto round = std::make_shared<Round>();
+  round->scratch = scratch_;
   RoundInput& in = round->in;
   in.map = map_;
   for (std::size_t i = 0; i < nodes_.size(); ++i) {

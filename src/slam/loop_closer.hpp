@@ -166,6 +166,7 @@ class LoopCloser {
     std::uint64_t ticket;
   };
   std::deque<InFlight> in_flight_;           // handed over, oldest first
+  std::shared_ptr<RoundScratch> scratch_ = std::make_shared<RoundScratch>();
   LoopClosureStats stats_;
   std::vector<LoopClosure> closures_;
   std::uint64_t version_ = 0;

@@ -184,22 +184,21 @@ Submap thaw_target(const RoundInput& in, const Target& target, const Reach& r) {
 }
 
 std::vector<LoopCandidate> search_all(const RoundInput& in, const LoopClosureConfig& config,
-                                      const PointWeightConfig& weights, std::uint64_t seed, LoopClosureStats& stats) {
+                                      const PointWeightConfig& weights, std::uint64_t seed, BranchAndBoundMatcher& matcher,
+                                      LoopClosureStats& stats) {
   const std::vector<Task> tasks = tasks_for(in, config);
   std::vector<LoopCandidate> found;
-  std::unique_ptr<BranchAndBoundMatcher> matcher;
   std::optional<Submap> thawed;  // the target searched now
   for (std::size_t i = 0; i < tasks.size(); ++i) {
     const Task& t = tasks[i];
     if (i == 0 || !(t.target == tasks[i - 1].target)) {
       const Reach r = reach_of(tasks, i, in, config);
       thawed = thaw_target(in, t.target, r);
-      matcher = std::make_unique<BranchAndBoundMatcher>(thawed->map.finest(), r.window, config.search.max_depth, r.lo,
-                                                        r.hi);
+      matcher.rebuild(thawed->map.finest(), r.window, config.search.max_depth, r.lo, r.hi);
     }
     const auto target_key = static_cast<std::uint64_t>(t.target.index) + (t.target.foreign ? (1ull << 32) : 0ull);
     const std::uint64_t task_seed = seed ^ (static_cast<std::uint64_t>(t.node) * 0x9E3779B97F4A7C15ull + target_key);
-    LoopSearch r = search_loop_closure(*matcher, *thawed, t.points->points(weights), t.prior, t.window,
+    LoopSearch r = search_loop_closure(matcher, *thawed, t.points->points(weights), t.prior, t.window,
                                        config.search, task_seed);
     ++stats.searches;
     count_rejection(stats, r.rejection);
@@ -338,7 +337,8 @@ void run_round(Round& round, const LoopClosureConfig& config, const PointWeightC
   const auto t0 = std::chrono::steady_clock::now();
   complete_input(round.in, round.previous ? round.previous->out.state : round.base);
   RoundOutput& out = round.out;
-  std::vector<LoopCandidate> fresh = search_all(round.in, config, weights, seed, out.stats);
+  if (!round.scratch) round.scratch = std::make_shared<RoundScratch>();
+  std::vector<LoopCandidate> fresh = search_all(round.in, config, weights, seed, round.scratch->matcher, out.stats);
   confirm(round.in, std::move(fresh), config, out);
   out.stats.accepted = out.accepted.size();
   optimize_with(round.in, config, out);

@@ -153,8 +153,15 @@ struct RoundOutput {
   LoopState state;  // what the next round starts from
 };
 
+// Memory a closer's rounds reuse from one to the next. They run one at a
+// time (an executor runs jobs in order), so they share it.
+struct RoundScratch {
+  BranchAndBoundMatcher matcher;
+};
+
 struct Round {
   RoundInput in;
+  std::shared_ptr<RoundScratch> scratch;  // null: the round's own
   // Where it starts: the round before it (which runs first), or `base`.
   std::shared_ptr<const Round> previous;
   LoopState base;

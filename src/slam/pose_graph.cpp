@@ -5,6 +5,7 @@
 #include <ceres/ceres.h>
 
 #include <array>
+#include <memory>
 #include <utility>
 #include <numbers>
 
@@ -110,8 +111,19 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
   }
 
   ceres::Solver::Options options;
-  // Nodes only meet submaps: eliminated first, they leave a small system in the submaps.
+  // Nodes only meet submaps and frames: eliminated first, they leave a small
+  // system in those. Said outright, since Ceres otherwise searches the graph
+  // for an independent set on every solve (a third of a solve's time).
   options.linear_solver_type = ceres::SPARSE_SCHUR;
+  if (part != Part::frames) {
+    auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+    for (Block& b : nodes)
+      if (problem.HasParameterBlock(b.data())) ordering->AddElementToGroup(b.data(), 0);
+    for (std::vector<Block>* blocks : {&submaps, &frames})
+      for (Block& b : *blocks)
+        if (problem.HasParameterBlock(b.data())) ordering->AddElementToGroup(b.data(), 1);
+    options.linear_solver_ordering = ordering;
+  }
   options.num_threads = 1;  // deterministic, and the caller decides where it runs
   options.max_num_iterations = config.max_iterations;
   options.logging_type = ceres::SILENT;
