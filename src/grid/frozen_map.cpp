@@ -65,6 +65,7 @@ std::vector<std::uint8_t> pack(const DsGrid& grid, std::size_t& blocks) {
 
 FrozenMap::FrozenMap(const MultiResMap& map) {
   static_assert(DsGrid::kTileSize % kBlock == 0);
+  map.finest().bounds(bounds_min_, bounds_max_);
   for (int l = 0; l < map.levels(); ++l) {
     Level level;
     const std::vector<std::uint8_t> raw = pack(map.level(l), level.blocks);

@@ -29,6 +29,11 @@ class FrozenMap {
   MultiResMap thaw(const MapConfig& config) const;
   MultiResMap thaw(const MapConfig& config, CellIndex region_min, CellIndex region_max) const;
   std::size_t memory_bytes() const;
+  // The finest level's bounding box of allocated tiles, as DsGrid::bounds gave it.
+  void bounds(CellIndex& min, CellIndex& max) const {
+    min = bounds_min_;
+    max = bounds_max_;
+  }
 
   static constexpr int kBlock = 16;
 
@@ -41,6 +46,7 @@ class FrozenMap {
   MultiResMap thaw(const MapConfig& config, const CellIndex* region_min, const CellIndex* region_max) const;
 
   std::vector<Level> levels_;
+  CellIndex bounds_min_, bounds_max_;
 };
 
 // A finished submap where its cells lie in some robot's map frame: a piece

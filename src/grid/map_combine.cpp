@@ -58,13 +58,18 @@ bool source_has_evidence(const DsGrid& source, const PointTransform& to_source, 
 // source knows something about).
 void combine_cells(DsGrid& target, const DsGrid& source, const PointTransform& to_source, CellIndex lo, CellIndex hi,
                    const EvidenceModel& evidence) {
-  const double tr = target.resolution();
+  const double tr = target.resolution(), inv = 1.0 / source.resolution();
   PackedMass* cells = nullptr;
   for (std::int32_t y = lo.y; y <= hi.y; ++y) {
     const double wy = (y + 0.5) * tr;
     for (std::int32_t x = lo.x; x <= hi.x; ++x) {
       const Eigen::Vector2d sp = to_source((x + 0.5) * tr, wy);
-      const DsMass m = interpolated_masses(source, sp.x(), sp.y());
+      const BilinearPoint b = bilinear_point(sp.x(), sp.y(), inv);
+      PackedMass q[4];
+      source.packed_quad(b.corner, q);
+      // Most cells of a rotated submap's box land where it saw nothing.
+      if (q[0].vacuous() && q[1].vacuous() && q[2].vacuous() && q[3].vacuous()) continue;
+      const DsMass m = interpolated_masses(b, q);
       if (m.occupied + m.free < kNothing) continue;
       if (!cells) cells = target.mutable_tile_cells(lo);
       PackedMass& cell = cells[DsGrid::local_index({x, y})];

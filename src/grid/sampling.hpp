@@ -65,19 +65,25 @@ inline float interpolated_occupancy(const DsGrid& grid, double wx, double wy, fl
 
 // The masses of `grid` at a world point, bilinear between cell centres: a
 // convex blend of valid masses, clamped against rounding.
-inline DsMass interpolated_masses(const DsGrid& grid, double wx, double wy) {
-  const BilinearPoint b = bilinear_point(wx, wy, 1.0 / grid.resolution());
-  DsMass q[4];
-  grid.quad(b.corner, q);
+// The same from the four cells around the point as stored (DsGrid::packed_quad).
+inline DsMass interpolated_masses(const BilinearPoint& b, const PackedMass packed[4]) {
   const std::array<float, 4> w = b.weights();
   DsMass m;
   for (int k = 0; k < 4; ++k) {
-    m.occupied += w[k] * q[k].occupied;
-    m.free += w[k] * q[k].free;
+    const DsMass q = packed[k].mass();
+    m.occupied += w[k] * q.occupied;
+    m.free += w[k] * q.free;
   }
   m.occupied = std::clamp(m.occupied, 0.0f, 1.0f);
   m.free = std::clamp(m.free, 0.0f, 1.0f - m.occupied);
   return m;
+}
+
+inline DsMass interpolated_masses(const DsGrid& grid, double wx, double wy) {
+  const BilinearPoint b = bilinear_point(wx, wy, 1.0 / grid.resolution());
+  PackedMass q[4];
+  grid.packed_quad(b.corner, q);
+  return interpolated_masses(b, q);
 }
 
 }  // namespace dsswarm

@@ -1,6 +1,8 @@
 #include "matching/branch_and_bound_matcher.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cmath>
 #include <numbers>
 
@@ -22,7 +24,15 @@ void max_pairs(const std::uint8_t* in, std::int32_t n, std::int32_t s, std::uint
 
 // out[i] = max(a[i], b[i]), a missing row reading as unknown.
 void max_rows(const std::uint8_t* a, const std::uint8_t* b, std::int32_t n, std::uint8_t* out) {
-  for (std::int32_t i = 0; i < n; ++i) out[i] = std::max(a ? a[i] : kUnknown, b ? b[i] : kUnknown);
+  // One loop per case, each simple enough to vectorize.
+  if (a && b) {
+    for (std::int32_t i = 0; i < n; ++i) out[i] = std::max(a[i], b[i]);
+  } else if (a || b) {
+    const std::uint8_t* one = a ? a : b;
+    for (std::int32_t i = 0; i < n; ++i) out[i] = std::max(one[i], kUnknown);
+  } else {
+    std::fill(out, out + n, kUnknown);
+  }
 }
 }  // namespace
 
@@ -67,16 +77,16 @@ void BranchAndBoundMatcher::rebuild(const DsGrid& grid, double max_window_xy, in
   base.height = hi.y - lo.y;
   base.values.assign(static_cast<std::size_t>(base.width) * static_cast<std::size_t>(base.height), kUnknown);
   grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
-    if (origin.x >= hi.x || origin.y >= hi.y || origin.x + DsGrid::kTileSize <= lo.x ||
-        origin.y + DsGrid::kTileSize <= lo.y)
-      return;
-    for (int i = 0; i < DsGrid::kTileCells; ++i) {
-      const CellIndex c = DsGrid::tile_cell(origin, i);
-      if (c.x < lo.x || c.y < lo.y || c.x >= hi.x || c.y >= hi.y) continue;
-      const DsMass m = cells[i].mass();
-      const auto v = static_cast<std::uint8_t>(kZero * (1.0f + m.occupied - m.free) + 0.5f);
-      base.values[static_cast<std::size_t>(c.y - lo.y) * static_cast<std::size_t>(base.width) +
-                  static_cast<std::size_t>(c.x - lo.x)] = v;
+    // The tile's cells within [lo, hi), row by row.
+    const std::int32_t x0 = std::max(lo.x, origin.x), x1 = std::min(hi.x, origin.x + DsGrid::kTileSize);
+    const std::int32_t y0 = std::max(lo.y, origin.y), y1 = std::min(hi.y, origin.y + DsGrid::kTileSize);
+    for (std::int32_t y = y0; y < y1; ++y) {
+      const PackedMass* row = cells + DsGrid::local_index({0, y});
+      std::uint8_t* out = base.values.data() + static_cast<std::ptrdiff_t>(y - lo.y) * base.width;
+      for (std::int32_t x = x0; x < x1; ++x) {
+        const DsMass m = row[x - origin.x].mass();
+        out[x - lo.x] = static_cast<std::uint8_t>(kZero * (1.0f + m.occupied - m.free) + 0.5f);
+      }
     }
   });
   // Level h (blocks of 2^h cells) from level h-1 by doubling.
@@ -107,11 +117,45 @@ struct BranchAndBoundMatcher::Search {
     double score;
   };
 
+  // When every lookup of the search lands inside the bounds (index_levels):
+  // per level and heading, each point's place in the level's values at offset 0.
+  std::vector<std::vector<std::int64_t>> index;  // [level * headings + heading]
+
+  void index_levels() {
+    CellIndex lo{std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max()};
+    CellIndex hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
+    for (const std::vector<CellIndex>& heading : cells)
+      for (const CellIndex& c : heading) {
+        lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
+        hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
+      }
+    // Offsets span [-half_window, half_window]; coarser levels reach further than the finest.
+    const Level& finest = matcher.levels_.front();
+    if (lo.x - half_window < finest.origin.x || lo.y - half_window < finest.origin.y ||
+        hi.x + half_window >= finest.origin.x + finest.width || hi.y + half_window >= finest.origin.y + finest.height)
+      return;
+    for (const Level& l : matcher.levels_)
+      for (const std::vector<CellIndex>& heading : cells) {
+        std::vector<std::int64_t>& out = index.emplace_back();
+        out.reserve(heading.size());
+        for (const CellIndex& c : heading)
+          out.push_back(static_cast<std::int64_t>(c.y - l.origin.y) * l.width + (c.x - l.origin.x));
+      }
+  }
+
   double score(const Candidate& c, int level) const {
     const Level& l = matcher.levels_[static_cast<std::size_t>(level)];
-    const std::vector<CellIndex>& pts = cells[static_cast<std::size_t>(c.heading)];
+    const auto h = static_cast<std::size_t>(c.heading);
     double sum = 0.0;
-    for (std::size_t i = 0; i < pts.size(); ++i) sum += weights[i] * l.at(pts[i].x + c.x, pts[i].y + c.y);
+    if (!index.empty()) {
+      const std::vector<std::int64_t>& at = index[static_cast<std::size_t>(level) * cells.size() + h];
+      const std::int64_t offset = static_cast<std::int64_t>(c.y) * l.width + c.x;
+      const std::uint8_t* values = l.values.data();
+      for (std::size_t i = 0; i < at.size(); ++i) sum += weights[i] * values[at[i] + offset];
+    } else {
+      const std::vector<CellIndex>& pts = cells[h];
+      for (std::size_t i = 0; i < pts.size(); ++i) sum += weights[i] * l.at(pts[i].x + c.x, pts[i].y + c.y);
+    }
     return to_score(sum / weight_sum);
   }
   Pose2 pose_of(const Candidate& c) const {
@@ -126,17 +170,23 @@ struct BranchAndBoundMatcher::Search {
   }
 
   // Children of `c` (a block at `level`), scored at level - 1, best first.
-  std::vector<Candidate> children(const Candidate& c, int level) const {
+  struct Children {
+    std::array<Candidate, 4> at;
+    std::size_t size = 0;
+  };
+  Children children(const Candidate& c, int level) const {
     const std::int32_t s = 1 << (level - 1);
-    std::vector<Candidate> out;
+    Children out;
     for (std::int32_t dy : {0, s})
       for (std::int32_t dx : {0, s}) {
         Candidate k{c.heading, c.x + dx, c.y + dy, 0.0};
         if (k.x > half_window || k.y > half_window) continue;
         k.score = score(k, level - 1);
-        out.push_back(k);
+        out.at[out.size++] = k;
       }
-    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+    // Best first, ties in the order made (an insertion sort, as std::sort does for so few).
+    for (std::size_t i = 1; i < out.size; ++i)
+      for (std::size_t j = i; j > 0 && out.at[j].score > out.at[j - 1].score; --j) std::swap(out.at[j], out.at[j - 1]);
     return out;
   }
 
@@ -146,9 +196,10 @@ struct BranchAndBoundMatcher::Search {
       if (!excluded(c)) best = c;
       return;
     }
-    for (const Candidate& k : children(c, level)) {
-      if (k.score <= best.score) break;  // sorted: none after it can do better
-      descend(k, level - 1, best);
+    const Children next = children(c, level);
+    for (std::size_t i = 0; i < next.size; ++i) {
+      if (next.at[i].score <= best.score) break;  // sorted: none after it can do better
+      descend(next.at[i], level - 1, best);
     }
   }
 };
@@ -180,7 +231,7 @@ std::optional<BranchAndBoundResult> BranchAndBoundMatcher::match(const std::vect
                                                                  double min_score, const std::optional<Pose2>& exclude,
                                                                  double exclude_xy, double exclude_theta) const {
   if (points.empty()) return std::nullopt;
-  Search search{*this, {}, {}, {}, 0.0, 0, prior, exclude, exclude_xy, exclude_theta};
+  Search search{*this, {}, {}, {}, 0.0, 0, prior, exclude, exclude_xy, exclude_theta, {}};
   for (const ScanPoint& p : points) {
     search.weights.push_back(p.weight);
     search.weight_sum += p.weight;
@@ -203,6 +254,7 @@ std::optional<BranchAndBoundResult> BranchAndBoundMatcher::match(const std::vect
   }
   const int max_level = depth() - 1;
   search.half_window = static_cast<std::int32_t>(std::ceil(window.xy * inv));
+  search.index_levels();
   const std::int32_t block = 1 << max_level;
   std::vector<Search::Candidate> top;
   for (int h = 0; h < static_cast<int>(search.headings.size()); ++h)

@@ -166,5 +166,36 @@ TEST(BranchAndBoundMatcher, RebuiltForAnotherGridItMatchesAsOneBuiltFresh) {
   }
 }
 
+TEST(BranchAndBoundMatcher, LookupsWithoutBoundsChecksFindWhatTheCheckedOnesFind) {
+  // A grid whose cells reach far beyond the office: every lookup of a search
+  // lands inside its bounds, so match() reads the bounds without checks.
+  const World world = office();
+  Rng rng(17);
+  const MultiResMap map = map_of(world, rng);
+  DsGrid wide = map.finest();
+  wide.set({-200, -200}, DsMass{0.3f, 0.2f});
+  wide.set({500, 500}, DsMass{0.3f, 0.2f});
+  const BranchAndBoundMatcher checked(map.finest(), 0.6), unchecked(wide, 0.6);
+  for (const Pose2& truth : {Pose2(3.3, 3.1, 0.7), Pose2(6.2, 2.2, -0.4), Pose2(2.0, 7.5, 2.0)}) {
+    const std::vector<ScanPoint> points = scan_at(world, truth, rng);
+    const Pose2 prior = truth * Pose2(0.3, -0.2, 0.08);
+    const SearchWindow window{0.6, 0.12};
+    const auto a = checked.match(points, prior, window, 0.0), b = unchecked.match(points, prior, window, 0.0);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a->score, b->score);
+    EXPECT_EQ(a->pose.x, b->pose.x);
+    EXPECT_EQ(a->pose.y, b->pose.y);
+    EXPECT_EQ(a->pose.theta, b->pose.theta);
+    EXPECT_DOUBLE_EQ(unchecked.score(points, b->pose), b->score);
+    // The runner-up search too.
+    const auto a2 = checked.match(points, prior, window, 0.0, a->pose, 0.2, 0.1);
+    const auto b2 = unchecked.match(points, prior, window, 0.0, b->pose, 0.2, 0.1);
+    ASSERT_EQ(a2.has_value(), b2.has_value());
+    if (a2) {
+      EXPECT_EQ(a2->score, b2->score);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dsswarm

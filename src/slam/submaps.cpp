@@ -122,10 +122,70 @@ std::size_t Submaps::memory_bytes() const {
 
 namespace {
 
-// Combines the submaps into `map`, in order, writing the target tiles of `band` only.
+// Where a submap's cells lie along the global y axis (metres), and how wide
+// they spread along x: enough to split the composition's work in two and to
+// skip a submap in a band it cannot reach.
+struct Extent {
+  double lo = 0.0, hi = 0.0, width = 0.0;
+  bool empty = true;
+};
+
+Extent extent_of(const Submap& s, const Pose2& pose, double resolution) {
+  CellIndex lo, hi;
+  if (s.finished)
+    s.frozen.bounds(lo, hi);
+  else
+    s.map.finest().bounds(lo, hi);
+  if (lo == hi) return {};
+  Extent e{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0.0, false};
+  double x_lo = e.lo, x_hi = e.hi;
+  for (int corner = 0; corner < 4; ++corner) {
+    const Eigen::Vector2d q =
+        pose * Eigen::Vector2d((corner & 1 ? hi.x : lo.x) * resolution, (corner & 2 ? hi.y : lo.y) * resolution);
+    e.lo = std::min(e.lo, q.y());
+    e.hi = std::max(e.hi, q.y());
+    x_lo = std::min(x_lo, q.x());
+    x_hi = std::max(x_hi, q.x());
+  }
+  e.width = x_hi - x_lo;
+  return e;
+}
+
+// The y that splits the submaps' placed area in halves: each band then has
+// about half the cells to resample.
+double balanced_split(const std::vector<Extent>& extents) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, total = 0.0;
+  for (const Extent& e : extents) {
+    if (e.empty) continue;
+    lo = std::min(lo, e.lo);
+    hi = std::max(hi, e.hi);
+    total += e.width * (e.hi - e.lo);
+  }
+  if (!(lo < hi)) return 0.0;
+  const auto below = [&](double y) {
+    double area = 0.0;
+    for (const Extent& e : extents)
+      if (!e.empty) area += e.width * std::clamp(y - e.lo, 0.0, e.hi - e.lo);
+    return area;
+  };
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (below(mid) < 0.5 * total ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Combines the submaps into `map`, in order, writing the target tiles of
+// `band` only; a submap that cannot reach the band is not even thawed.
 void combine_band(MultiResMap& map, const MapConfig& config, const std::vector<const Submap*>& submaps,
-                  const std::vector<Pose2>& poses, const TileBand& band) {
+                  const std::vector<Pose2>& poses, const std::vector<Extent>& extents, const TileBand& band) {
+  // A level's tile rows start up to a tile below the cells they hold, and a
+  // coarse level's evidence reaches a few of its cells past the finest's.
+  const double coarsest = config.resolution * static_cast<double>(1 << (config.levels - 1));
+  const double margin = (DsGrid::kTileSize + 4) * coarsest;
   for (std::size_t i = 0; i < submaps.size(); ++i) {
+    const Extent& e = extents[i];
+    if (!e.empty && (e.hi + margin < band.from || e.lo - margin >= band.to)) continue;
     const Submap* s = submaps[i];
     const MultiResMap thawed = s->finished ? s->frozen.thaw(config) : MultiResMap();
     const MultiResMap& cells = s->finished ? thawed : s->map;
@@ -141,28 +201,28 @@ void combine_band(MultiResMap& map, const MapConfig& config, const std::vector<c
 MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Submap*>& submaps,
                             const std::function<Pose2(int)>& cells_pose, Executor* helper) {
   std::vector<Pose2> poses;
-  for (const Submap* s : submaps) poses.push_back(cells_pose(s->id));
+  std::vector<Extent> extents;
+  for (const Submap* s : submaps) {
+    poses.push_back(cells_pose(s->id));
+    extents.push_back(extent_of(*s, poses.back(), config.resolution));
+  }
   MultiResMap map(config);
   if (!helper || submaps.size() < 2) {
-    combine_band(map, config, submaps, poses, {});
+    combine_band(map, config, submaps, poses, extents, {});
     return map;
   }
-  // Split where half the submaps begin: each band then holds about half the work.
-  std::vector<double> starts;
-  for (std::size_t i = 0; i < submaps.size(); ++i) starts.push_back((poses[i] * submaps[i]->anchor).y);
-  std::nth_element(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(starts.size() / 2), starts.end());
-  const double split = starts[starts.size() / 2];
+  const double split = balanced_split(extents);
   MultiResMap upper(config);
   std::exception_ptr failed;
   const std::uint64_t ticket = helper->submit([&] {
     try {
-      combine_band(upper, config, submaps, poses, {split, std::numeric_limits<double>::infinity()});
+      combine_band(upper, config, submaps, poses, extents, {split, std::numeric_limits<double>::infinity()});
     } catch (...) {
       failed = std::current_exception();
     }
   });
   try {
-    combine_band(map, config, submaps, poses, {-std::numeric_limits<double>::infinity(), split});
+    combine_band(map, config, submaps, poses, extents, {-std::numeric_limits<double>::infinity(), split});
   } catch (...) {
     helper->wait_for(ticket);  // the job uses this frame's data
     throw;
