@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "grid/sampling.hpp"
@@ -21,14 +22,49 @@ void check_compatible(const MultiResMap& target, const MultiResMap& source) {
                       std::to_string(target.levels()) + ")");
 }
 
-// Whether any of `grid`'s tiles holds a cell in [lo, hi] (inclusive).
-bool any_tile(const DsGrid& grid, CellIndex lo, CellIndex hi) {
-  constexpr int bits = DsGrid::kTileBits;
-  for (std::int32_t ty = lo.y >> bits; ty <= hi.y >> bits; ++ty)
-    for (std::int32_t tx = lo.x >> bits; tx <= hi.x >> bits; ++tx)
-      if (grid.tile_cells({tx * DsGrid::kTileSize, ty * DsGrid::kTileSize})) return true;
-  return false;
-}
+// Which 16×16-cell blocks of a grid hold any evidence. A rotated submap's
+// box in the target is mostly space it never saw, and even its tiles are
+// mostly empty blocks (a frozen map keeps only the blocks with evidence):
+// whole blocks of target cells that can only read empty ones are skipped.
+class BlockMask {
+ public:
+  static constexpr int kBits = 4;
+
+  explicit BlockMask(const DsGrid& grid) {
+    CellIndex lo, hi;
+    grid.bounds(lo, hi);
+    if (lo == hi) return;
+    origin_ = {lo.x >> kBits, lo.y >> kBits};
+    width_ = ((hi.x - 1) >> kBits) - origin_.x + 1;
+    height_ = ((hi.y - 1) >> kBits) - origin_.y + 1;
+    held_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0);
+    grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
+      for (int i = 0; i < DsGrid::kTileCells; ++i) {
+        if (cells[i].vacuous()) continue;
+        const CellIndex c = DsGrid::tile_cell(origin, i);
+        held_[index((c.x >> kBits) - origin_.x, (c.y >> kBits) - origin_.y)] = 1;
+      }
+    });
+  }
+
+  // Whether a block holding one of the cells [lo, hi] (inclusive) holds evidence.
+  bool any(CellIndex lo, CellIndex hi) const {
+    const std::int32_t x0 = std::max((lo.x >> kBits) - origin_.x, 0), x1 = std::min((hi.x >> kBits) - origin_.x, width_ - 1);
+    const std::int32_t y0 = std::max((lo.y >> kBits) - origin_.y, 0), y1 = std::min((hi.y >> kBits) - origin_.y, height_ - 1);
+    for (std::int32_t y = y0; y <= y1; ++y)
+      for (std::int32_t x = x0; x <= x1; ++x)
+        if (held_[index(x, y)]) return true;
+    return false;
+  }
+
+ private:
+  std::size_t index(std::int32_t x, std::int32_t y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
+  CellIndex origin_;
+  std::int32_t width_ = 0, height_ = 0;
+  std::vector<std::uint8_t> held_;
+};
 
 // The bounding box of the rectangle [lo, hi] (metres) moved by `move`.
 struct Box {
@@ -47,11 +83,11 @@ Box moved_box(const PointTransform& move, const Eigen::Vector2d& lo, const Eigen
 
 // The source cells bilinear reads can touch for the target cells [lo, hi]
 // (their centres placed in the source; a cell of margin against rounding).
-bool source_has_evidence(const DsGrid& source, const PointTransform& to_source, double tr, CellIndex lo, CellIndex hi) {
+bool source_has_evidence(const BlockMask& source, const PointTransform& to_source, double tr, double inv,
+                         CellIndex lo, CellIndex hi) {
   const Box b = moved_box(to_source, {(lo.x + 0.5) * tr, (lo.y + 0.5) * tr}, {(hi.x + 0.5) * tr, (hi.y + 0.5) * tr});
-  const double inv = 1.0 / source.resolution();
-  return any_tile(source, {floor_to_cell(b.lo.x() * inv - 0.5) - 1, floor_to_cell(b.lo.y() * inv - 0.5) - 1},
-                  {floor_to_cell(b.hi.x() * inv - 0.5) + 2, floor_to_cell(b.hi.y() * inv - 0.5) + 2});
+  return source.any({floor_to_cell(b.lo.x() * inv - 0.5) - 1, floor_to_cell(b.lo.y() * inv - 0.5) - 1},
+                    {floor_to_cell(b.hi.x() * inv - 0.5) + 2, floor_to_cell(b.hi.y() * inv - 0.5) + 2});
 }
 
 // Target cells [lo, hi] of one target tile (allocated on the first cell the
@@ -89,17 +125,25 @@ void combine_level(DsGrid& target, const DsGrid& source, const Pose2& source_in_
       moved_box(PointTransform(source_in_target), {smin.x * sr, smin.y * sr}, {smax.x * sr, smax.y * sr});
   const CellIndex tmin = target.cell_of(placed.lo), tmax = target.cell_of(placed.hi);
   const PointTransform to_source(source_in_target.inverse());
-  // Tile by tile, skipping those whose place in the source holds no tile: a
-  // rotated submap's box in the target is mostly space it never saw.
-  constexpr int bits = DsGrid::kTileBits, size = DsGrid::kTileSize;
-  const double tile_height = size * target.resolution();
+  const BlockMask held(source);
+  const double tr = target.resolution(), inv = 1.0 / sr;
+  // Tile by tile, in blocks of 16×16 cells, skipping those whose place in the
+  // source holds nothing.
+  constexpr int bits = DsGrid::kTileBits, size = DsGrid::kTileSize, block = 1 << BlockMask::kBits;
+  const double tile_height = size * tr;
   for (std::int32_t ty = tmin.y >> bits; ty <= tmax.y >> bits; ++ty) {
     if (!band.holds(ty, tile_height)) continue;
     for (std::int32_t tx = tmin.x >> bits; tx <= tmax.x >> bits; ++tx) {
       const CellIndex lo{std::max(tmin.x, tx * size), std::max(tmin.y, ty * size)};
       const CellIndex hi{std::min(tmax.x, tx * size + size - 1), std::min(tmax.y, ty * size + size - 1)};
-      if (source_has_evidence(source, to_source, target.resolution(), lo, hi))
-        combine_cells(target, source, to_source, lo, hi, evidence);
+      if (!source_has_evidence(held, to_source, tr, inv, lo, hi)) continue;
+      for (std::int32_t by = lo.y >> BlockMask::kBits; by <= hi.y >> BlockMask::kBits; ++by)
+        for (std::int32_t bx = lo.x >> BlockMask::kBits; bx <= hi.x >> BlockMask::kBits; ++bx) {
+          const CellIndex blo{std::max(lo.x, bx * block), std::max(lo.y, by * block)};
+          const CellIndex bhi{std::min(hi.x, bx * block + block - 1), std::min(hi.y, by * block + block - 1)};
+          if (source_has_evidence(held, to_source, tr, inv, blo, bhi))
+            combine_cells(target, source, to_source, blo, bhi, evidence);
+        }
     }
   }
 }

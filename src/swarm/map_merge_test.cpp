@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "common/errors.hpp"
+#include "grid/sampling.hpp"
 #include "matching/scan_scorer.hpp"
 #include "swarm/map_knowledge.hpp"
 #include "swarm/test_scenes.hpp"
@@ -33,6 +36,39 @@ TEST(MapMerge, AtIdentityEveryCellIsTheDempsterCombination) {
   EXPECT_NEAR(a.finest().at({3, 4}).free, expected.free, 3e-5);
   EXPECT_NEAR(a.finest().at({-20, 7}).free, 0.6f, 1e-5);
   EXPECT_EQ(a.finest().at({100, 100}).occupied, 0.0f);  // nothing known there
+}
+
+TEST(MapMerge, ResamplingSkipsOnlyCellsThatCanReadNothing) {
+  // Patches of evidence scattered over a source moved and turned into a
+  // target with evidence of its own: the combination, which skips tiles and
+  // 16×16 blocks whose place in the source is empty, against every target
+  // cell resampled one by one.
+  MultiResMap source, target;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::int32_t> place(-400, 400);
+  // Single cells, many: some lie at the very edge of what a block can read.
+  for (MultiResMap* map : {&source, &target})
+    for (int k = 0; k < 3000; ++k) map->mutable_level(0).set({place(rng), place(rng)}, {0.55f, 0.15f});
+  // Turned (blocks read rotated boxes) and only moved (boxes read exactly).
+  for (const Pose2& move : {Pose2(1.37, -2.11, 0.7), Pose2(1.37, -2.11, 0.0)}) {
+    MultiResMap combined = target;
+    combine_into(combined, source, move);
+    const PointTransform to_source(move.inverse());
+    const double r = target.config().resolution;
+    std::size_t changed = 0;
+    for (std::int32_t y = -700; y < 700; ++y)
+      for (std::int32_t x = -700; x < 700; ++x) {
+        const Eigen::Vector2d p = to_source((x + 0.5) * r, (y + 0.5) * r);
+        const DsMass m = interpolated_masses(source.finest(), p.x(), p.y());
+        PackedMass expected = target.finest().packed_at({x, y});
+        if (m.occupied + m.free >= 1e-4f) {  // map_combine's "knows nothing" threshold
+          expected = PackedMass::pack(target.config().evidence.update(expected.mass(), m));
+          ++changed;
+        }
+        ASSERT_EQ(combined.finest().packed_at({x, y}), expected) << x << ", " << y << " turned " << move.theta;
+      }
+    EXPECT_GT(changed, 3000u);
+  }
 }
 
 TEST(MapMerge, ForeignMapLandsOnTheSameWallsThroughTheTransform) {
