@@ -1,9 +1,10 @@
 #include "runtime/worker_thread.hpp"
 
-#include <malloc.h>
 #include <time.h>
 
 #include <chrono>
+
+#include "common/process_usage.hpp"
 
 namespace dsswarm {
 namespace {
@@ -74,14 +75,12 @@ void WorkerThread::run() {
     lock.unlock();
     const double t0 = thread_cpu_seconds();
     job();
-#ifdef __GLIBC__
     // A job's scratch memory (thawed submaps, bounds, the solver's matrices)
     // is freed in scattered pieces that glibc keeps resident for the next job.
     if (std::chrono::steady_clock::now() >= next_trim) {
-      malloc_trim(0);
+      release_free_heap();
       next_trim = std::chrono::steady_clock::now() + trim_interval_;
     }
-#endif
     const double spent = thread_cpu_seconds() - t0;
     lock.lock();
     cpu_seconds_ += spent;

@@ -270,6 +270,9 @@ void optimize_with(const RoundInput& in, const LoopClosureConfig& config, RoundO
     out.optimized = optimize(out.graph, config.graph).usable;
     return;
   }
+  // Room for the closures up front: the copy below then keeps it, and adding
+  // them does not reallocate (and copy) every constraint of the graph.
+  out.graph.constraints.reserve(in.graph.constraints.size() + out.accepted.size());
   while (!out.accepted.empty()) {
     out.graph = in.graph;
     for (const LoopCandidate& c : out.accepted) out.graph.constraints.push_back(as_constraint(c));
@@ -304,6 +307,7 @@ void complete_input(RoundInput& in, const LoopState& start) {
     g.submaps[s] = s < start.submaps.size() ? start.submaps[s] : start.global_from_local * in.submaps[s].anchor;
   for (std::size_t f = 0; f < g.frames.size() && f < start.frames.size(); ++f)
     if (in.frame_tied[f]) g.frames[f] = start.frames[f];
+  g.constraints.reserve(g.constraints.size() + start.closures.size());  // exactly: not doubled
   g.constraints.insert(g.constraints.end(), start.closures.begin(), start.closures.end());
   in.pending = start.pending;
   // Other robots' pieces that moved since (their later closures): ours into them follow.
