@@ -3,6 +3,7 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -27,6 +28,36 @@ std::uint8_t encode(float m) {
 float decode(std::uint8_t q) {
   const float r = static_cast<float>(q) / 255.0f;
   return r * r;
+}
+
+// decode() of every byte, worked out once: thawing reads two per cell.
+const std::array<float, 256>& decoded() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int q = 0; q < 256; ++q) t[static_cast<std::size_t>(q)] = decode(static_cast<std::uint8_t>(q));
+    return t;
+  }();
+  return table;
+}
+
+// One block's cells into the grid: one tile lookup per block (a block lies in
+// one tile), none for a block whose cells all hold nothing.
+void unpack_block(DsGrid& grid, CellIndex origin, const std::uint8_t* occupied, const std::uint8_t* free) {
+  static_assert(DsGrid::kTileSize % FrozenMap::kBlock == 0);
+  if ((origin.x & (FrozenMap::kBlock - 1)) != 0 || (origin.y & (FrozenMap::kBlock - 1)) != 0)
+    throw std::logic_error("FrozenMap: a block origin off the block grid");  // pack() writes aligned ones only
+  const std::array<float, 256>& value = decoded();
+  PackedMass* tile = nullptr;
+  const int base = DsGrid::local_index(origin);
+  for (int k = 0; k < kCells; ++k) {
+    const std::uint8_t qo = occupied[k];
+    const std::uint8_t qf = free[k];
+    if (qo == 0 && qf == 0) continue;
+    if (!tile) tile = grid.mutable_tile_cells(origin);
+    const float o = value[qo];
+    tile[base + (k / FrozenMap::kBlock) * DsGrid::kTileSize + k % FrozenMap::kBlock] =
+        PackedMass::pack({o, std::min(value[qf], 1.0f - o)});
+  }
 }
 
 // One level's evidence as [origins][occupied bytes][free bytes], blocks with evidence only.
@@ -107,13 +138,7 @@ MultiResMap FrozenMap::thaw(const MapConfig& config, const CellIndex* region_min
       if (region_min && (hi.x <= region_min->x || hi.y <= region_min->y || lo.x >= region_max->x ||
                          lo.y >= region_max->y))
         continue;
-      for (int k = 0; k < kCells; ++k) {
-        const std::uint8_t qo = occupied[b * kCells + static_cast<std::size_t>(k)];
-        const std::uint8_t qf = free[b * kCells + static_cast<std::size_t>(k)];
-        if (qo == 0 && qf == 0) continue;
-        const float o = decode(qo);
-        grid.set({origins[b].x + k % kBlock, origins[b].y + k / kBlock}, {o, std::min(decode(qf), 1.0f - o)});
-      }
+      unpack_block(grid, origins[b], occupied + b * kCells, free + b * kCells);
     }
   }
   return map;
