@@ -60,8 +60,10 @@ void write_agent_files(const fs::path& dir, const SwarmAgent& a, const Trajector
                        const SwarmConfig& config) {
   fs::create_directories(dir);
   write_tum(dir / "trajectory.tum", trajectory);
-  const GridRaster own = a.slam().own_map().finest().to_raster();
-  if (own.width > 0) write_map_server(dir / "map.yaml", own);
+  {  // one raster at a time: a building's is tens of MB
+    const GridRaster own = a.slam().own_map().finest().to_raster();
+    if (own.width > 0) write_map_server(dir / "map.yaml", own);
+  }
   const GridRaster merged = a.slam().map().finest().to_raster();
   if (merged.width > 0) {
     write_map_server(dir / "merged_map.yaml", merged);

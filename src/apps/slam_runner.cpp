@@ -123,7 +123,7 @@ void require_returns(const SensorLog& log) {
 
 OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                              const nlohmann::json& stats, const Trajectory* ground_truth, bool images) {
-  const GridRaster raster = slam.map().finest().to_raster();
+  GridRaster raster = slam.map().finest().to_raster();
   if (raster.width == 0)
     throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
   OutputFiles files;
@@ -152,7 +152,9 @@ OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& 
     draw_ringed_marker(picture, raster, result.trajectory.front().pose.translation(), agent_colour(0), 4);
     legend.push_back({"start", agent_colour(0), LegendEntry::Mark::Disc});
   }
-  picture = with_legend(picture, raster.resolution * raster.width / picture.width, legend);
+  const double metres_per_pixel = raster.resolution * raster.width / picture.width;
+  std::vector<DsMass>().swap(raster.cells);  // drawn: its memory goes before the legend's copy and the PNG
+  picture = with_legend(picture, metres_per_pixel, legend);
   files.add(dir / "map.png", encode_png(dir / "map.png", picture));
   files.add(dir / "stats.json", stats.dump(2) + "\n");
   return files;
