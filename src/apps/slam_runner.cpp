@@ -55,6 +55,15 @@ RunResult run(const SensorLog& log, Slam& slam, const std::string& label, Sensor
   return result;
 }
 
+// Whether any cell holds evidence: what to_raster would find, without the raster.
+bool holds_evidence(const DsGrid& grid) {
+  bool any = false;
+  grid.for_each_tile([&](CellIndex, const PackedMass* cells) {
+    any = any || std::any_of(cells, cells + DsGrid::kTileCells, [](PackedMass m) { return !m.vacuous(); });
+  });
+  return any;
+}
+
 }  // namespace
 
 RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
@@ -123,8 +132,7 @@ void require_returns(const SensorLog& log) {
 
 OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                              const nlohmann::json& stats, const Trajectory* ground_truth, bool images) {
-  GridRaster raster = slam.map().finest().to_raster();
-  if (raster.width == 0)
+  if (!holds_evidence(slam.map().finest()))
     throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
   OutputFiles files;
   files.add(dir / "trajectory.tum", format_tum(dir / "trajectory.tum", result.trajectory));
@@ -133,6 +141,7 @@ OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& 
     files.add(dir / "stats.json", stats.dump(2) + "\n");
     return files;
   }
+  GridRaster raster = slam.map().finest().to_raster();
   add_map_server(files, dir / "map.yaml", raster);
   Image picture = render_map(raster, fitting_scale(raster));
   auto path_of = [](const Trajectory& t) {

@@ -51,6 +51,23 @@ TEST(SlamRunner, DemoTrajectoryBeatsOdometryAndWritesEveryOutput) {
   EXPECT_EQ(j["scans_read"].get<std::size_t>(), 800u);
 }
 
+// A map with no evidence is refused before anything is written, with the
+// trajectory-only outputs too (which need no raster).
+TEST(SlamRunner, AnEmptyMapIsRefusedWithOrWithoutImages) {
+  Slam slam;
+  const RunResult r;
+  const nlohmann::json stats;
+  for (const bool images : {true, false})
+    EXPECT_THROW(run_output_files(fs::path(DSSWARM_TEST_TMP) / "runner_empty", r, slam, stats, nullptr, images),
+                 InputError)
+        << "images " << images;
+  SimulatedRun sim = simulate_demo(DemoConfig{});
+  sim.log.scans.resize(5);
+  Slam mapped;
+  const RunResult some = run_slam(sim.log, mapped, "");
+  EXPECT_NO_THROW(run_output_files(fs::path(DSSWARM_TEST_TMP) / "runner_some", some, mapped, stats, nullptr, false));
+}
+
 // --save-map then --load-map: the second run, started 20 cm and 4° off,
 // localizes in the saved map and so follows the first run's trajectory (a
 // run that ignored the map would found a new one at the wrong start and stay
