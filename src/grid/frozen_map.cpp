@@ -30,6 +30,18 @@ float decode(std::uint8_t q) {
   return r * r;
 }
 
+// encode() of every 16-bit mass a cell can hold, worked out once (64 KiB):
+// freezing a submap encodes two masses per cell on the scan thread.
+const std::array<std::uint8_t, 65536>& encoded() {
+  static const std::array<std::uint8_t, 65536> table = [] {
+    std::array<std::uint8_t, 65536> t{};
+    for (std::uint32_t q = 0; q < t.size(); ++q)
+      t[q] = encode(static_cast<float>(q) * (1.0f / PackedMass::kOne));  // as PackedMass::mass() decodes
+    return t;
+  }();
+  return table;
+}
+
 // decode() of every byte, worked out once: thawing reads two per cell.
 const std::array<float, 256>& decoded() {
   static const std::array<float, 256> table = [] {
@@ -66,16 +78,18 @@ std::vector<std::uint8_t> pack(const DsGrid& grid, std::size_t& blocks) {
   std::vector<CellIndex> origins;
   std::vector<std::uint8_t> occupied, free;
   std::uint8_t o[kCells], f[kCells];
+  const std::array<std::uint8_t, 65536>& byte = encoded();
   grid.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
     for (int by = 0; by < per_tile; ++by)
       for (int bx = 0; bx < per_tile; ++bx) {
         bool any = false;
         for (int y = 0; y < FrozenMap::kBlock; ++y)
           for (int x = 0; x < FrozenMap::kBlock; ++x) {
-            const DsMass m = cells[(by * FrozenMap::kBlock + y) * DsGrid::kTileSize + bx * FrozenMap::kBlock + x].mass();
+            const PackedMass m = cells[(by * FrozenMap::kBlock + y) * DsGrid::kTileSize + bx * FrozenMap::kBlock + x];
             const int k = y * FrozenMap::kBlock + x;
-            o[k] = encode(m.occupied);
-            f[k] = encode(m.free);
+            o[k] = byte[m.occupied];
+            // mass() caps free at 1 - occupied; below a full sum the cap changes nothing.
+            f[k] = m.occupied + m.free < 65535u ? byte[m.free] : encode(m.mass().free);
             any = any || o[k] != 0 || f[k] != 0;
           }
         if (!any) continue;
