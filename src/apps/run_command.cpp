@@ -97,7 +97,7 @@ void run(const RunArgs& a) {
   const double cpu0 = cpu_seconds();
   const RunResult result = run_slam_releasing(log, *slam);
   release_free_heap();  // the scans and the loop closer's working memory, before the outputs
-  nlohmann::json stats = run_stats(result, *slam, log, read_seconds);
+  nlohmann::json stats = run_stats(result, *slam, log, read_seconds, !a.no_images || !a.save_map.empty());
   stats["cpu_seconds"] = cpu_seconds() - cpu0;
   stats["background_cpu_seconds"] = background.cpu_seconds();
   stats["waited_seconds"] = background.waited_seconds();

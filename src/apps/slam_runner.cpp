@@ -55,15 +55,6 @@ RunResult run(const SensorLog& log, Slam& slam, const std::string& label, Sensor
   return result;
 }
 
-// Whether any cell holds evidence: what to_raster would find, without the raster.
-bool holds_evidence(const DsGrid& grid) {
-  bool any = false;
-  grid.for_each_tile([&](CellIndex, const PackedMass* cells) {
-    any = any || std::any_of(cells, cells + DsGrid::kTileCells, [](PackedMass m) { return !m.vacuous(); });
-  });
-  return any;
-}
-
 }  // namespace
 
 RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label) {
@@ -74,8 +65,8 @@ RunResult run_slam_releasing(SensorLog& log, Slam& slam, const std::string& labe
   return run(log, slam, label, &log);
 }
 
-nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds) {
-  const std::size_t cells = slam.map().cells_allocated();
+nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds,
+                         bool map_figures) {
   nlohmann::json j;
   j["source"] = log.source;
   j["scans_read"] = result.scans_read;
@@ -90,9 +81,12 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   j["scans_per_second"] = result.wall_seconds > 0 ? static_cast<double>(result.scans_read) / result.wall_seconds : 0.0;
   j["read_seconds"] = read_seconds;
   j["peak_rss_bytes"] = peak_rss_bytes();
-  j["cells_allocated"] = cells;
-  j["map_bytes"] = slam.map().memory_bytes();
-  j["bytes_per_cell"] = cells > 0 ? static_cast<double>(slam.map().memory_bytes()) / static_cast<double>(cells) : 0.0;
+  if (map_figures) {
+    const std::size_t cells = slam.map().cells_allocated();
+    j["cells_allocated"] = cells;
+    j["map_bytes"] = slam.map().memory_bytes();
+    j["bytes_per_cell"] = cells > 0 ? static_cast<double>(slam.map().memory_bytes()) / static_cast<double>(cells) : 0.0;
+  }
   j["submaps"] = slam.submaps().finished().size() + (slam.submaps().current().scans > 0 ? 1 : 0);
   j["submap_bytes"] = slam.submaps().memory_bytes();
   const LoopCloser& closer = slam.loop_closer();
@@ -132,7 +126,7 @@ void require_returns(const SensorLog& log) {
 
 OutputFiles run_output_files(const std::filesystem::path& dir, const RunResult& result, const Slam& slam,
                              const nlohmann::json& stats, const Trajectory* ground_truth, bool images) {
-  if (!holds_evidence(slam.map().finest()))
+  if (!slam.holds_evidence())
     throw InputError("the map is empty: no scan point was inserted (see points.min_range and points.max_range)");
   OutputFiles files;
   files.add(dir / "trajectory.tum", format_tum(dir / "trajectory.tum", result.trajectory));

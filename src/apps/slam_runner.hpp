@@ -32,8 +32,11 @@ RunResult run_slam(const SensorLog& log, Slam& slam, const std::string& label = 
 // holds only the part of the log still to come.
 RunResult run_slam_releasing(SensorLog& log, Slam& slam, const std::string& label = "run");
 
-// stats.json contents: the keys promised in the README.
-nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds);
+// stats.json contents: the keys promised in the README. `map_figures` false
+// leaves out the global map's cells and bytes: with loop closure the map is
+// composed from its submaps for them, work wasted when no map is written.
+nlohmann::json run_stats(const RunResult& result, const Slam& slam, const SensorLog& log, double read_seconds,
+                         bool map_figures = true);
 
 // Whether any of `scans` has a valid return (a reading the map can use).
 bool has_returns(const std::vector<LaserScan>& scans);

@@ -49,6 +49,10 @@ TEST(SlamRunner, DemoTrajectoryBeatsOdometryAndWritesEveryOutput) {
                         "cells_allocated", "bytes_per_cell"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["scans_read"].get<std::size_t>(), 800u);
+  // Without map outputs the map is not composed for its figures alone.
+  const nlohmann::json lean = run_stats(r, slam, sim.log, 0.0, false);
+  for (const char* k : {"cells_allocated", "map_bytes", "bytes_per_cell"}) EXPECT_FALSE(lean.contains(k)) << k;
+  EXPECT_EQ(lean["scans_read"], j["scans_read"]);
 }
 
 // A map with no evidence is refused before anything is written, with the

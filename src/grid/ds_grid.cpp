@@ -137,4 +137,10 @@ GridRaster DsGrid::to_raster(int margin) const {
   return r;
 }
 
+bool DsGrid::holds_evidence() const {
+  return std::any_of(tiles_.begin(), tiles_.end(), [](const std::unique_ptr<Tile>& t) {
+    return std::any_of(t->cells.begin(), t->cells.end(), [](PackedMass m) { return !m.vacuous(); });
+  });
+}
+
 }  // namespace dsswarm

@@ -113,6 +113,8 @@ class DsGrid {
     return get_or_create_tile(c).cells.data();
   }
 
+  // Whether any cell holds evidence (an allocated tile may hold none).
+  bool holds_evidence() const;
   std::size_t tiles_allocated() const { return tiles_.size(); }
   std::size_t cells_allocated() const { return tiles_.size() * kTileCells; }
   // Heap bytes held by the grid (tiles plus the pointer table), for memory reports.

@@ -15,6 +15,16 @@ TEST(DsGrid, UnwrittenCellsAreUnknownAndAllocateNothing) {
   EXPECT_EQ(g.tiles_allocated(), 0u);
 }
 
+TEST(DsGrid, HoldsEvidenceOnlyWhereACellKnowsSomething) {
+  DsGrid g(0.05);
+  EXPECT_FALSE(g.holds_evidence());
+  g.set({10, -3}, DsMass{});  // allocates a tile of vacuous cells
+  EXPECT_GT(g.tiles_allocated(), 0u);
+  EXPECT_FALSE(g.holds_evidence());
+  g.set({10, -3}, DsMass{kStep, 0.0f});
+  EXPECT_TRUE(g.holds_evidence());
+}
+
 TEST(DsGrid, GrowsInEveryDirection) {
   DsGrid g(0.05);
   const CellIndex far[] = {{0, 0}, {-5000, 3}, {7000, -9000}, {-70000, 80000}, {12, 12}};

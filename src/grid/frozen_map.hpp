@@ -29,6 +29,8 @@ class FrozenMap {
   MultiResMap thaw(const MapConfig& config) const;
   MultiResMap thaw(const MapConfig& config, CellIndex region_min, CellIndex region_max) const;
   std::size_t memory_bytes() const;
+  // Whether any cell holds evidence (a block is kept only when one does).
+  bool holds_evidence() const { return !levels_.empty() && levels_.front().blocks > 0; }
   // The finest level's bounding box of allocated tiles, as DsGrid::bounds gave it.
   void bounds(CellIndex& min, CellIndex& max) const {
     min = bounds_min_;

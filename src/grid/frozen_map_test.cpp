@@ -19,6 +19,14 @@ MultiResMap some_map() {
   return map;
 }
 
+TEST(FrozenMap, HoldsEvidenceAsTheLiveMapDid) {
+  EXPECT_TRUE(FrozenMap(some_map()).holds_evidence());
+  EXPECT_FALSE(FrozenMap(MultiResMap()).holds_evidence());
+  MultiResMap vacuous;
+  vacuous.mutable_level(0).set({3, 4}, DsMass{});
+  EXPECT_FALSE(FrozenMap(vacuous).holds_evidence());
+}
+
 TEST(FrozenMap, ThawsToTheSameCellsWithinItsPrecision) {
   const MultiResMap map = some_map();
   const FrozenMap frozen(map);

@@ -1,5 +1,6 @@
 #include "slam/slam.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "common/errors.hpp"
@@ -165,6 +166,15 @@ const MultiResMap& Slam::own_map() const {
     global_version_ = version;
   }
   return *global_;
+}
+
+bool Slam::holds_evidence() const {
+  if (working_) return working_->finest().holds_evidence();
+  if (localize_only_) return submaps_.local_map().finest().holds_evidence();
+  const std::vector<const Submap*> all = submaps_.all();
+  return std::any_of(all.begin(), all.end(), [](const Submap* s) {
+    return s->finished ? s->frozen.holds_evidence() : s->map.finest().holds_evidence();
+  });
 }
 
 std::vector<ForeignPiece> Slam::finished_pieces() const {

@@ -128,6 +128,8 @@ class Slam {
   // Only the evidence of this robot's own scans: what it shares with others,
   // so that nothing received from a third robot is ever passed on as its own.
   const MultiResMap& own_map() const;
+  // Whether map() would hold any evidence, found without composing it.
+  bool holds_evidence() const;
   // Installs a richer map (own evidence ⊕ foreign evidence, built by the
   // swarm layer from own_map()) as map(); from then on every insertion goes
   // into it too (Dempster's rule is associative and commutative, so it stays

@@ -142,6 +142,12 @@ TEST(Slam, SubmapsOnlyWithLoopClosure) {
   EXPECT_EQ(without.loop_closer().stats().searches, 0u);
   EXPECT_GT(with.submaps().finished().size(), 2u);
   EXPECT_TRUE(SlamConfig{}.loop_closure.enabled);
+  // Whether there is a map is known without composing it, from frozen submaps too.
+  for (const Slam* s : {&with, &without}) {
+    EXPECT_TRUE(s->holds_evidence());
+    EXPECT_EQ(s->holds_evidence(), s->map().finest().holds_evidence());
+  }
+  EXPECT_FALSE(Slam(on).holds_evidence());
 }
 
 TEST(Slam, WorksWithoutOdometry) {
