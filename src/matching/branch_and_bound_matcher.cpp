@@ -117,37 +117,39 @@ struct BranchAndBoundMatcher::Search {
     double score;
   };
 
-  // When every lookup of the search lands inside the bounds (index_levels):
-  // per level and heading, each point's place in the level's values at offset 0.
+  // Per level and heading, each point's place in the level's values at offset
+  // 0, and per heading the box of its points' cells: a candidate whose box
+  // lands inside a level reads it without bounds checks (most do; those near
+  // the edge of the searched region are checked point by point).
   std::vector<std::vector<std::int64_t>> index;  // [level * headings + heading]
+  std::vector<CellIndex> box_lo, box_hi;         // per heading
 
   void index_levels() {
-    CellIndex lo{std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max()};
-    CellIndex hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
-    for (const std::vector<CellIndex>& heading : cells)
+    for (const std::vector<CellIndex>& heading : cells) {
+      CellIndex lo{std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max()};
+      CellIndex hi{std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min()};
       for (const CellIndex& c : heading) {
         lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
         hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
       }
-    // Offsets span [-half_window, half_window]; coarser levels reach further than the finest.
-    const Level& finest = matcher.levels_.front();
-    if (lo.x - half_window < finest.origin.x || lo.y - half_window < finest.origin.y ||
-        hi.x + half_window >= finest.origin.x + finest.width || hi.y + half_window >= finest.origin.y + finest.height)
-      return;
+      box_lo.push_back(lo);
+      box_hi.push_back(hi);
+    }
     for (const Level& l : matcher.levels_)
       for (const std::vector<CellIndex>& heading : cells) {
-        std::vector<std::int64_t>& out = index.emplace_back();
-        out.reserve(heading.size());
-        for (const CellIndex& c : heading)
-          out.push_back(static_cast<std::int64_t>(c.y - l.origin.y) * l.width + (c.x - l.origin.x));
+        std::vector<std::int64_t>& out = index.emplace_back(heading.size());
+        for (std::size_t i = 0; i < heading.size(); ++i)
+          out[i] = static_cast<std::int64_t>(heading[i].y - l.origin.y) * l.width + (heading[i].x - l.origin.x);
       }
   }
 
   double score(const Candidate& c, int level) const {
     const Level& l = matcher.levels_[static_cast<std::size_t>(level)];
     const auto h = static_cast<std::size_t>(c.heading);
+    const CellIndex lo = box_lo[h], hi = box_hi[h];
     double sum = 0.0;
-    if (!index.empty()) {
+    if (lo.x + c.x >= l.origin.x && lo.y + c.y >= l.origin.y && hi.x + c.x < l.origin.x + l.width &&
+        hi.y + c.y < l.origin.y + l.height) {
       const std::vector<std::int64_t>& at = index[static_cast<std::size_t>(level) * cells.size() + h];
       const std::int64_t offset = static_cast<std::int64_t>(c.y) * l.width + c.x;
       const std::uint8_t* values = l.values.data();
@@ -231,7 +233,7 @@ std::optional<BranchAndBoundResult> BranchAndBoundMatcher::match(const std::vect
                                                                  double min_score, const std::optional<Pose2>& exclude,
                                                                  double exclude_xy, double exclude_theta) const {
   if (points.empty()) return std::nullopt;
-  Search search{*this, {}, {}, {}, 0.0, 0, prior, exclude, exclude_xy, exclude_theta, {}};
+  Search search{*this, {}, {}, {}, 0.0, 0, prior, exclude, exclude_xy, exclude_theta, {}, {}, {}};
   for (const ScanPoint& p : points) {
     search.weights.push_back(p.weight);
     search.weight_sum += p.weight;

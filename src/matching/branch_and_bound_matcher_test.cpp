@@ -168,7 +168,8 @@ TEST(BranchAndBoundMatcher, RebuiltForAnotherGridItMatchesAsOneBuiltFresh) {
 
 TEST(BranchAndBoundMatcher, LookupsWithoutBoundsChecksFindWhatTheCheckedOnesFind) {
   // A grid whose cells reach far beyond the office: every lookup of a search
-  // lands inside its bounds, so match() reads the bounds without checks.
+  // lands inside its bounds, so match() reads the bounds without checks; on
+  // the office's own grid candidates near its edge are checked point by point.
   const World world = office();
   Rng rng(17);
   const MultiResMap map = map_of(world, rng);
