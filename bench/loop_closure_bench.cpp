@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 
 #include <cstdlib>
+#include <exception>
 #include <numbers>
 #include <string>
 
@@ -52,9 +53,7 @@ Trajectory stamped(const SimulatedRun& run, const std::vector<Pose2>& poses) {
   return t;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const int first = argc > 1 ? std::atoi(argv[1]) : 1, last = argc > 2 ? std::atoi(argv[2]) : 10;
   const std::string scene = argc > 3 ? argv[3] : "loop";
   const double range = argc > 4 ? std::atof(argv[4]) : 8.0;
@@ -101,4 +100,17 @@ int main(int argc, char** argv) {
              all.candidates, all.rejected_no_match, all.rejected_unknown, all.rejected_inliers, all.rejected_same_side,
              all.rejected_ambiguous, all.rejected_prior_fits, all.rejected_inconsistent, all.rejected_residual);
   return 0;
+}
+
+}  // namespace
+
+// A bad argument or configuration (e.g. a lidar range of 0) is reported, not thrown out of main.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "loop_closure_bench: {}\nusage: loop_closure_bench [first_seed] [last_seed] [loop|building] "
+                       "[lidar range, m] [config.json]\n", e.what());
+    return 2;
+  }
 }
