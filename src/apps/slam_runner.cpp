@@ -82,10 +82,11 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   j["read_seconds"] = read_seconds;
   j["peak_rss_bytes"] = peak_rss_bytes();
   if (map_figures) {
-    const std::size_t cells = slam.map().cells_allocated();
+    const MultiResMap& map = slam.map();
+    const std::size_t cells = map.cells_allocated(), bytes = map.memory_bytes();
     j["cells_allocated"] = cells;
-    j["map_bytes"] = slam.map().memory_bytes();
-    j["bytes_per_cell"] = cells > 0 ? static_cast<double>(slam.map().memory_bytes()) / static_cast<double>(cells) : 0.0;
+    j["map_bytes"] = bytes;
+    j["bytes_per_cell"] = cells > 0 ? static_cast<double>(bytes) / static_cast<double>(cells) : 0.0;
   }
   j["submaps"] = slam.submaps().finished().size() + (slam.submaps().current().scans > 0 ? 1 : 0);
   j["submap_bytes"] = slam.submaps().memory_bytes();

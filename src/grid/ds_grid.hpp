@@ -69,17 +69,22 @@ class DsGrid {
         out[0] = out[1] = out[2] = out[3] = PackedMass{};
         return;
       }
-      const PackedMass* base = &t->cells[static_cast<std::size_t>(local_index(c))];
-      out[0] = base[0];
-      out[1] = base[1];
-      out[2] = base[kTileSize];
-      out[3] = base[kTileSize + 1];
+      quad_in_tile(t->cells.data(), c, out);
       return;
     }
     out[0] = packed_at(c);
     out[1] = packed_at({c.x + 1, c.y});
     out[2] = packed_at({c.x, c.y + 1});
     out[3] = packed_at({c.x + 1, c.y + 1});
+  }
+  // packed_quad's block read from the cells of the tile holding it (for
+  // readers that keep a tile; the block must not reach past the tile's edge).
+  static void quad_in_tile(const PackedMass* tile, CellIndex c, PackedMass out[4]) {
+    const PackedMass* base = tile + local_index(c);
+    out[0] = base[0];
+    out[1] = base[1];
+    out[2] = base[kTileSize];
+    out[3] = base[kTileSize + 1];
   }
   PackedMass packed_at(CellIndex c) const {
     const Tile* t = find_tile(c);

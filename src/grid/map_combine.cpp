@@ -96,11 +96,7 @@ class QuadReader {
       out[0] = out[1] = out[2] = out[3] = PackedMass{};
       return;
     }
-    const PackedMass* base = cells_ + DsGrid::local_index(c);
-    out[0] = base[0];
-    out[1] = base[1];
-    out[2] = base[DsGrid::kTileSize];
-    out[3] = base[DsGrid::kTileSize + 1];
+    DsGrid::quad_in_tile(cells_, c, out);
   }
 
  private:
