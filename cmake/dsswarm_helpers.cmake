@@ -19,16 +19,18 @@ function(dsswarm_holds_system_tests out)
   set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
-# dsswarm_test(NAME SOURCES a_test.cpp ... LIBS lib ... [COST n])
+# dsswarm_test(NAME SOURCES a_test.cpp ... LIBS lib ... [COST n] [SERIAL])
 # A GoogleTest executable registered with ctest; each TEST becomes one ctest case.
 # COST (ctest's property, for every case): executables holding cases that run
 # for tens of seconds under the sanitizers give one, so that `ctest -j` starts
 # them first instead of ending the run with one of them alone.
+# SERIAL (ctest's RUN_SERIAL): cases that need the machine's cores to
+# themselves, e.g. robot processes that must keep up with their real-time input.
 function(dsswarm_test name)
   if(NOT DSSWARM_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(T "" "COST" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(T "SERIAL" "COST" "SOURCES;LIBS" ${ARGN})
   dsswarm_holds_system_tests(wanted ${T_SOURCES})
   if(NOT wanted)
     return()
@@ -43,6 +45,9 @@ function(dsswarm_test name)
   set(properties TIMEOUT 600)
   if(T_COST)
     list(APPEND properties COST ${T_COST})
+  endif()
+  if(T_SERIAL)
+    list(APPEND properties RUN_SERIAL TRUE)
   endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
 endfunction()
