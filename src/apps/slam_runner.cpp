@@ -97,6 +97,7 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
                        {"rounds", lc.rounds},
                        {"optimizations", lc.optimizations},
                        {"searches", lc.searches},
+                       {"skipped_closed", lc.skipped_closed},
                        {"candidates", lc.candidates},
                        {"accepted", lc.accepted},
                        {"rejected",

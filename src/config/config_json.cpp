@@ -216,6 +216,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"runner_up_xy", DSS_FIELD(double, loop_closure.search.runner_up_xy)},
         {"runner_up_theta", DSS_FIELD(double, loop_closure.search.runner_up_theta)},
         {"min_prior_known", DSS_FIELD(double, loop_closure.search.min_prior_known)},
+        {"reclose_travel", DSS_FIELD(double, loop_closure.reclose_travel)},
         {"consistency_travel", DSS_FIELD(double, loop_closure.consistency_travel)},
         {"agree_xy", DSS_FIELD(double, loop_closure.agree_xy)},
         {"agree_theta", DSS_FIELD(double, loop_closure.agree_theta)},

@@ -16,6 +16,7 @@ void LoopClosureConfig::validate() const {
   if (!(search_spacing >= 0.0)) throw ConfigError("loop_closure.search_spacing must be >= 0");
   if (!(max_distance > 0.0)) throw ConfigError("loop_closure.max_distance must be > 0");
   if (max_submaps < 1) throw ConfigError("loop_closure.max_submaps must be >= 1");
+  if (!(reclose_travel >= 0.0)) throw ConfigError("loop_closure.reclose_travel must be >= 0");
   if (!(window_xy > 0.0) || !(window_xy_per_m >= 0.0) || !(max_window_xy >= window_xy))
     throw ConfigError("loop_closure.window_xy must be > 0, window_xy_per_m >= 0, max_window_xy >= window_xy");
   if (!(window_theta > 0.0) || !(window_theta_per_m >= 0.0) || !(max_window_theta >= window_theta) ||

@@ -116,6 +116,28 @@ TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
   }
 }
 
+TEST(LoopClosing, ASubmapClosedNearbyIsNotSearchedAgainAndTheLoopStillCloses) {
+  const SimulatedRun sim = long_loop();
+  const std::vector<Pose2> local = with_heading_drift(sim, 0.0006);
+  const auto closed_with = [&](double reclose_travel, LoopClosureStats& stats) {
+    SlamConfig config = with_loop_closure();
+    config.loop_closure.reclose_travel = reclose_travel;
+    Submaps submaps(config.map, config.active_submaps(), config.insert);
+    LoopCloser closer(config.loop_closure, config.map, config.points, config.seed + 2);
+    close_loops(config, sim, local, submaps, closer);
+    stats = closer.stats();
+    return evaluate_ate(stamped(sim, closer.trajectory()), truth_of(sim)).rmse;
+  };
+  LoopClosureStats every{}, thinned{};
+  const double ate_every = closed_with(0.0, every);
+  const double ate_thinned = closed_with(4.0, thinned);
+  EXPECT_EQ(every.skipped_closed, 0u);
+  EXPECT_GT(thinned.skipped_closed, 0u);
+  EXPECT_LT(thinned.searches, every.searches);
+  EXPECT_LT(ate_every, 0.05);
+  EXPECT_LT(ate_thinned, 0.05);
+}
+
 TEST(LoopClosing, NodesHangOnTheirSubmapsAndTheGlobalMapIsTheSubmapsAtTheirPoses) {
   const SimulatedRun sim = long_loop(1.1);
   Slam slam(with_loop_closure());

@@ -183,15 +183,44 @@ Submap thaw_target(const RoundInput& in, const Target& target, const Reach& r) {
   return Submap{s.id, s.anchor, s.scans, s.travel, false, s.frozen.thaw(finest_only, r.lo, r.hi), FrozenMap()};
 }
 
+// Our own submaps' closures so far, by submap: the travel of each one's node.
+class ClosedNearby {
+ public:
+  ClosedNearby(const RoundInput& in, double within) : in_(in), within_(within) {
+    for (const Constraint& c : in.graph.constraints)
+      if (c.kind == Constraint::Kind::loop) add(c.submap, c.node);
+  }
+  void add(int submap, int node) { travel_[submap].push_back(in_.node_travel[static_cast<std::size_t>(node)]); }
+  bool near(const Target& t, int node) const {
+    if (t.foreign || !(within_ > 0.0)) return false;
+    const auto it = travel_.find(t.index);
+    if (it == travel_.end()) return false;
+    const double at = in_.node_travel[static_cast<std::size_t>(node)];
+    return std::any_of(it->second.begin(), it->second.end(), [&](double d) { return std::abs(d - at) < within_; });
+  }
+
+ private:
+  const RoundInput& in_;
+  double within_;
+  std::map<int, std::vector<double>> travel_;
+};
+
 std::vector<LoopCandidate> search_all(const RoundInput& in, const LoopClosureConfig& config,
                                       const PointWeightConfig& weights, std::uint64_t seed, BranchAndBoundMatcher& matcher,
                                       LoopClosureStats& stats) {
   const std::vector<Task> tasks = tasks_for(in, config);
   std::vector<LoopCandidate> found;
   std::optional<Submap> thawed;  // the target searched now
+  std::optional<Target> thawed_target;
+  ClosedNearby closed(in, config.reclose_travel);
   for (std::size_t i = 0; i < tasks.size(); ++i) {
     const Task& t = tasks[i];
-    if (i == 0 || !(t.target == tasks[i - 1].target)) {
+    if (closed.near(t.target, t.node)) {
+      ++stats.skipped_closed;
+      continue;
+    }
+    if (thawed_target != t.target) {
+      thawed_target = t.target;
       const Reach r = reach_of(tasks, i, in, config);
       thawed = thaw_target(in, t.target, r);
       matcher.rebuild(thawed->map.finest(), r.window, config.search.max_depth, r.lo, r.hi);
@@ -214,6 +243,7 @@ std::vector<LoopCandidate> search_all(const RoundInput& in, const LoopClosureCon
       ++stats.foreign_candidates;
     } else {
       r.candidate.submap = t.target.index;
+      closed.add(t.target.index, t.node);
     }
     found.push_back(r.candidate);
   }
@@ -356,6 +386,7 @@ void run_round(Round& round, const LoopClosureConfig& config, const PointWeightC
 
 void add_stats(LoopClosureStats& total, const LoopClosureStats& more) {
   total.searches += more.searches;
+  total.skipped_closed += more.skipped_closed;
   total.candidates += more.candidates;
   total.accepted += more.accepted;
   total.rejected_no_match += more.rejected_no_match;

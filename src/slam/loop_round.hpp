@@ -28,6 +28,11 @@ struct LoopClosureConfig {
   double search_spacing = 1.0;         // m
   double max_distance = 5.0;           // m: submaps with a node this close to the searched node's estimate
   int max_submaps = 3;                 // searched per node, nearest first
+  // A finished submap that already has a closure (accepted, or found earlier
+  // this round) from a node within this travel of the searched node is not
+  // searched again from it: one more closure there adds little to the graph
+  // and costs the background a search (0: search every time).
+  double reclose_travel = 2.0;         // m
   // The search window grows with the distance travelled since the submap or
   // the last accepted closure, whichever is later.
   double window_xy = 0.3;              // m
@@ -73,6 +78,7 @@ struct LoopClosureStats {
   std::size_t rounds = 0;
   std::size_t optimizations = 0;
   std::size_t searches = 0;              // (node, submap) pairs tried
+  std::size_t skipped_closed = 0;        // pairs not tried: the submap was closed nearby (reclose_travel)
   std::size_t candidates = 0;            // passed every check of the search
   std::size_t accepted = 0;
   std::size_t rejected_no_match = 0;
