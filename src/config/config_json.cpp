@@ -249,6 +249,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"merge_surroundings_points", DSS_SWARM_FIELD(int, encounter.locate.merge_surroundings_points)},
         {"mode_separation_xy", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_xy)},
         {"mode_separation_theta", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_theta)},
+        {"possible_same_side", DSS_SWARM_FIELD(double, encounter.locate.possible_same_side)},
         {"refine_evaluations", DSS_SWARM_FIELD(int, encounter.locate.refine.evaluations)},
         {"min_known_fraction", DSS_SWARM_FIELD(double, encounter.min_known_fraction)},
         {"min_inlier_ratio", DSS_SWARM_FIELD(double, encounter.min_inlier_ratio)},

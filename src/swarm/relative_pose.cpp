@@ -25,6 +25,8 @@ void RelativePoseConfig::validate() const {
   if (merge_surroundings_points < 0) throw ConfigError("encounter.merge_surroundings_points must be >= 0");
   if (!(mode_separation_xy > 0.0) || !(mode_separation_theta > 0.0))
     throw ConfigError("encounter.mode_separation_xy and mode_separation_theta must be > 0");
+  if (!(possible_same_side >= 0.0 && possible_same_side <= 1.0))
+    throw ConfigError("encounter.possible_same_side must be in [0, 1]");
   refine.validate();
 }
 
@@ -159,10 +161,13 @@ RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoi
     const double around = surroundings.empty() ? m.score : evidence_agreement(map.finest(), surroundings, m.pose);
     refined.push_back({m.pose, m.score, around, 0.0, 0.0});
   }
-  std::sort(refined.begin(), refined.end(), [](const PoseHypothesis& a, const PoseHypothesis& b) {
+  if (refined.empty()) return result;
+  const auto possible = [&](const PoseHypothesis& h) { return h.same_side_ratio >= config.possible_same_side; };
+  for (PoseHypothesis& h : refined) h.same_side_ratio = same_side_ratio(map.finest(), points, h.pose);
+  std::sort(refined.begin(), refined.end(), [&](const PoseHypothesis& a, const PoseHypothesis& b) {
+    if (possible(a) != possible(b)) return possible(a);
     return a.surroundings_score > b.surroundings_score;
   });
-  if (refined.empty()) return result;
   if (!surroundings.empty()) {
     // Final placement: the scan and the surroundings together.
     const MatchResult m = refine_placement(map, points, surroundings, refined.front().pose, config, seed + 1);
@@ -180,7 +185,8 @@ RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoi
   }
   result.best = refined.front();
   for (std::size_t i = 1; i < refined.size(); ++i)
-    if (distinct_modes(refined[i].pose, result.best.pose, config)) {
+    if (distinct_modes(refined[i].pose, result.best.pose, config) &&
+        (possible(refined[i]) || !possible(result.best))) {
       result.runner_up = refined[i];
       break;
     }

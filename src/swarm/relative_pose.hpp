@@ -11,7 +11,10 @@
 //   3. the refined modes are ranked by how well the foreign robot's
 //      *surroundings* fit — the obstacles of its own map within a few metres,
 //      which it sends anyway with its map: one scan of a corridor fits many
-//      places, the walls, doors and rooms around it far fewer. The best mode
+//      places, the walls, doors and rooms around it far fewer. A mode whose
+//      beams meet the map's walls from behind (same_side_ratio) cannot be
+//      where the robot is, however its surroundings fit: it ranks after
+//      every mode that can. The best mode
 //      is refined once more with those points (hundreds of walls cells pin
 //      the pose better than one scan) and is the answer; the best *distinct*
 //      alternative is kept too, because a placement is only trustworthy when
@@ -49,6 +52,9 @@ struct RelativePoseConfig {
   // Two placements are distinct modes when this far apart (either way).
   double mode_separation_xy = 0.5;      // m
   double mode_separation_theta = 0.26;  // rad (15°)
+  // Modes whose same_side_ratio is below this rank after all others, and are
+  // no runner-up to one that passes (0: rank by the surroundings alone).
+  double possible_same_side = 0.8;
   // Every point on every level (no merge, the coarse levels' old stride): a
   // wrong placement here is a wrong closure or merge, not one scan's error.
   MatcherConfig refine{.evaluations = 600, .sigma_xy = 0.15, .sigma_theta = 0.04,

@@ -193,3 +193,36 @@ TEST(SameSideRatio, LowForAScanThatMeetsAThinWallFromTheOtherSide) {
 
 }  // namespace
 }  // namespace dsswarm
+
+namespace dsswarm {
+namespace {
+
+// The thin-wall room again: A has been in the upper half only. B's scan,
+// turned half a circle about a point of the wall, lands below it: its wall
+// hits on A's wall cells, met from behind. Surroundings made to fit that
+// placement perfectly (as a robot's own obstacles can, far from where the
+// two robots' views of a place agree) must not win over a placement that
+// can be.
+TEST(RelativePose, APlacementThatMeetsWallsFromBehindRanksAfterOneThatCanBe) {
+  const World room({{{-5, -3}, {5, -3}}, {{5, -3}, {5, 3}}, {{5, 3}, {-5, 3}}, {{-5, 3}, {-5, -3}}, {{-5, 0}, {5, 0}}});
+  Rng rng(7);
+  const MultiResMap map = test::map_from(room, {{-2.0, 1.5, 0.0}, {0.0, 1.5, 1.0}, {2.0, 1.5, 2.0}}, Pose2{}, rng);
+  const Pose2 truth{1.0, 0.8, 0.5};
+  const Pose2 behind = Pose2{1.0, 0.0, std::numbers::pi} * Pose2{0.0, 0.8, 0.5};  // truth turned about (1, 0)
+  const std::vector<ScanPoint> scan = test::scan_at(room, truth, rng);
+  const std::vector<ScanPoint> fits_behind = surroundings_points(map, behind, 8.0, 2000);
+  RelativePoseConfig by_surroundings;
+  by_surroundings.possible_same_side = 0.0;
+  const RelativePoseResult old = locate_scan(map, scan, {1.0, 0.0}, by_surroundings, 3, fits_behind);
+  ASSERT_LT(old.best.same_side_ratio, 0.5) << "the premise: ranked by the surroundings alone, it lands behind the wall";
+  const RelativePoseResult r = locate_scan(map, scan, {1.0, 0.0}, RelativePoseConfig{}, 3, fits_behind);
+  // Above the wall: the truth or its turn about the half room's centre (a
+  // symmetric box; the runner-up check is what turns such a pair down).
+  EXPECT_GT(r.best.same_side_ratio, 0.8);
+  EXPECT_GT(r.best.pose.y, 0.3);
+  ASSERT_TRUE(r.runner_up);
+  EXPECT_GT(r.runner_up->same_side_ratio, 0.8) << "an impossible placement is no rival to a possible one";
+}
+
+}  // namespace
+}  // namespace dsswarm
