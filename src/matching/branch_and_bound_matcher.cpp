@@ -122,8 +122,10 @@ struct BranchAndBoundMatcher::Search {
   // Per level and heading, each point's place in the level's values at offset
   // 0, and per heading the box of its points' cells: a candidate whose box
   // lands inside a level reads it without bounds checks (most do; those near
-  // the edge of the searched region are checked point by point).
-  std::vector<std::vector<std::int64_t>> index;  // [level * headings + heading]
+  // the edge of the searched region are checked point by point). One buffer,
+  // level-major, points.size() entries per (level, heading); an entry is
+  // read only when its candidate lies inside the level, where 32 bits suffice.
+  std::vector<std::int32_t> index;
   std::vector<CellIndex> box_lo, box_hi;         // per heading
 
   void index_levels() {
@@ -137,12 +139,13 @@ struct BranchAndBoundMatcher::Search {
       box_lo.push_back(lo);
       box_hi.push_back(hi);
     }
+    const std::size_t n = cells.empty() ? 0 : cells.front().size();
+    index.resize(matcher.levels_.size() * cells.size() * n);
+    std::int32_t* out = index.data();
     for (const Level& l : matcher.levels_)
-      for (const std::vector<CellIndex>& heading : cells) {
-        std::vector<std::int64_t>& out = index.emplace_back(heading.size());
-        for (std::size_t i = 0; i < heading.size(); ++i)
-          out[i] = static_cast<std::int64_t>(heading[i].y - l.origin.y) * l.width + (heading[i].x - l.origin.x);
-      }
+      for (const std::vector<CellIndex>& heading : cells)
+        for (const CellIndex& c : heading)
+          *out++ = static_cast<std::int32_t>(static_cast<std::int64_t>(c.y - l.origin.y) * l.width + (c.x - l.origin.x));
   }
 
   double score(const Candidate& c, int level) const {
@@ -152,14 +155,15 @@ struct BranchAndBoundMatcher::Search {
     double sum = 0.0;
     if (lo.x + c.x >= l.origin.x && lo.y + c.y >= l.origin.y && hi.x + c.x < l.origin.x + l.width &&
         hi.y + c.y < l.origin.y + l.height) {
-      const std::vector<std::int64_t>& at = index[static_cast<std::size_t>(level) * cells.size() + h];
+      const std::size_t n = cells[h].size();
+      const std::int32_t* at = index.data() + (static_cast<std::size_t>(level) * cells.size() + h) * n;
       const std::int64_t offset = static_cast<std::int64_t>(c.y) * l.width + c.x;
       const std::uint8_t* values = l.values.data();
       // Four sums in turn, so that each addition need not wait for the one
       // before; the products are exact in double, so are the sums (the same
       // score to the bit).
       std::array<double, 4> part{};
-      const std::size_t n = at.size(), n4 = n - n % 4;
+      const std::size_t n4 = n - n % 4;
       for (std::size_t i = 0; i < n4; i += 4)
         for (std::size_t k = 0; k < 4; ++k) part[k] += weights[i + k] * values[at[i + k] + offset];
       for (std::size_t i = n4; i < n; ++i) part[0] += weights[i] * values[at[i] + offset];
