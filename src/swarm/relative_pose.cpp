@@ -176,12 +176,12 @@ RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoi
     refined.front().pose = pose;
     refined.front().score = score_pose(map.finest(), points, pose);
     refined.front().surroundings_score = evidence_agreement(map.finest(), surroundings, pose);
+    refined.front().same_side_ratio = same_side_ratio(map.finest(), points, pose);
   }
   for (PoseHypothesis& h : refined) {
     const MatchQuality q = match_quality(map.finest(), points, h.pose);
     h.inlier_ratio = q.inlier_ratio;
     h.known_fraction = q.known_fraction;
-    h.same_side_ratio = same_side_ratio(map.finest(), points, h.pose);
   }
   result.best = refined.front();
   for (std::size_t i = 1; i < refined.size(); ++i)

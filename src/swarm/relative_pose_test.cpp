@@ -191,12 +191,6 @@ TEST(SameSideRatio, LowForAScanThatMeetsAThinWallFromTheOtherSide) {
   EXPECT_GT(same_side_ratio(map.finest(), test::scan_at(room, above, rng), above), 0.9);
 }
 
-}  // namespace
-}  // namespace dsswarm
-
-namespace dsswarm {
-namespace {
-
 // The thin-wall room again: A has been in the upper half only. B's scan,
 // turned half a circle about a point of the wall, lands below it: its wall
 // hits on A's wall cells, met from behind. Surroundings made to fit that
