@@ -17,7 +17,7 @@
 #include "net/qos.hpp"
 #include "net/ros2_types.hpp"
 #include "net/ros_names.hpp"
-#include "net/warning_throttle.hpp"
+#include "common/warning_throttle.hpp"
 
 namespace dsswarm::net {
 namespace {
