@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "io/logs/carmen_fields.hpp"
 #include "io/logs/text_line_reader.hpp"
 
 namespace dsswarm {
@@ -41,87 +41,16 @@ BeamGeometry span180_beam_geometry(std::size_t n) {
 
 namespace {
 
-using Tokens = std::vector<std::string_view>;
-
-void split_fields(std::string_view line, Tokens& out) {
-  out.clear();
-  const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && is_space(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !is_space(line[i])) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
-}
-
-// Parses the whole token or nothing ("1.5x" is not a number).
-template <class T>
-bool parse_whole(std::string_view token, T& value) {
-  const char* first = token.data();
-  const char* last = first + token.size();
-  // from_chars, unlike strtod, rejects a leading '+'.
-  if (last - first > 1 && *first == '+' && first[1] != '-') ++first;
-  const auto [end, ec] = std::from_chars(first, last, value);
-  return ec == std::errc() && end == last;
-}
-
-// Keeps error messages readable when a binary file is fed in.
-std::string shown(std::string_view token) {
-  constexpr std::size_t kMax = 40;
-  return token.size() <= kMax ? std::string(token) : std::string(token.substr(0, kMax)) + "...";
-}
-
-// Where a record came from, for error messages: "file:line: RECORD: ...".
-struct Where {
-  const std::string& file;
-  std::size_t line;
-  std::string_view record;
-
-  [[noreturn]] void fail(std::string_view message) const {
-    throw InputError(fmt::format("{}:{}: {}: {}", file, line, record, message));
-  }
-};
-
-double number_field(const Where& where, std::string_view token, std::string_view field) {
-  double value = 0.0;
-  if (!parse_whole(token, value)) {
-    where.fail(fmt::format("field '{}' is not a number: '{}'", field, shown(token)));
-  }
-  return value;
-}
-
-double finite_field(const Where& where, std::string_view token, std::string_view field) {
-  const double value = number_field(where, token, field);
-  if (!std::isfinite(value)) where.fail(fmt::format("field '{}' must be finite, got '{}'", field, shown(token)));
-  return value;
-}
-
-std::size_t count_field(const Where& where, std::string_view token, std::string_view field) {
-  unsigned long long value = 0;
-  if (!parse_whole(token, value)) {
-    where.fail(fmt::format("field '{}' must be a whole number >= 0, got '{}'", field, shown(token)));
-  }
-  return static_cast<std::size_t>(value);
-}
-
-// Ranges may be "nan", "inf" or negative: kept as they are (LaserScan treats
-// them as invalid) and counted for a warning.
-void read_ranges(const Where& where, const Tokens& fields, std::size_t first, std::size_t n,
-                 std::vector<float>& ranges) {
-  ranges.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!parse_whole(fields[first + i], ranges[i])) {
-      where.fail(fmt::format("field 'range {} of {}' is not a number: '{}'", i + 1, n, shown(fields[first + i])));
-    }
-  }
-}
-
-Pose2 pose_fields(const Where& where, const Tokens& fields, std::size_t first,
-                  const std::array<std::string_view, 3>& names) {
-  return {finite_field(where, fields[first], names[0]), finite_field(where, fields[first + 1], names[1]),
-          finite_field(where, fields[first + 2], names[2])};
-}
+using carmen_detail::count_field;
+using carmen_detail::finite_field;
+using carmen_detail::number_field;
+using carmen_detail::parse_whole;
+using carmen_detail::pose_fields;
+using carmen_detail::read_ranges;
+using carmen_detail::shown;
+using carmen_detail::split_fields;
+using carmen_detail::Tokens;
+using carmen_detail::Where;
 
 // One laser record as read, before the file-wide geometry and offset are known.
 struct LaserRecord {
@@ -197,67 +126,83 @@ class CarmenParser {
   SensorLog finish() {
     SensorLog log;
     log.source = file_;
-    std::vector<LaserRecord>* chosen = nullptr;
-    std::string_view chosen_type;
-    if (!flaser_.empty()) {
-      chosen = &flaser_;
-      chosen_type = "FLASER";
-    } else if (!robotlaser_.empty()) {
-      chosen = &robotlaser_;
-      chosen_type = "ROBOTLASER1";
-    } else if (!rlaser_.empty()) {
-      chosen = &rlaser_;
-      chosen_type = "RLASER";
-    } else {
-      throw InputError(file_ + ": no laser scans (FLASER/RLASER/ROBOTLASER1) found" +
-                       (empty_scans_ > 0 ? fmt::format(" ({} records have 0 readings)", empty_scans_) : ""));
-    }
+    const auto [chosen, chosen_type] = choose_stream();
     note_ignored_streams(chosen_type, log.warnings);
     check_bad_params(chosen_type, chosen->front().has_own_geometry, log.warnings);
     const Pose2 offset = laser_offset(*chosen, log.warnings);
-    const auto [range_min, range_max] = range_limits();
+    const ScanProblems problems = prepare_scans(*chosen, chosen_type, offset, log.scans);
+    add_end_warnings(problems, log);
+    return log;
+  }
 
+ private:
+  struct UnknownType {
+    std::size_t first_line = 0;
+    std::size_t count = 0;
+  };
+
+  // Range readings and timestamps kept as they are, counted for the warnings.
+  struct ScanProblems {
     std::size_t nonfinite = 0, negative = 0;
     std::size_t backwards = 0;
-    log.scans.reserve(chosen->size());
-    for (LaserRecord& record : *chosen) {
+  };
+
+  std::pair<std::vector<LaserRecord>*, std::string_view> choose_stream() {
+    if (!flaser_.empty()) return {&flaser_, "FLASER"};
+    if (!robotlaser_.empty()) return {&robotlaser_, "ROBOTLASER1"};
+    if (!rlaser_.empty()) return {&rlaser_, "RLASER"};
+    throw InputError(file_ + ": no laser scans (FLASER/RLASER/ROBOTLASER1) found" +
+                     (empty_scans_ > 0 ? fmt::format(" ({} records have 0 readings)", empty_scans_) : ""));
+  }
+
+  // Gives the chosen records the file-wide geometry, range limits, odometry and
+  // offset, and moves their scans to `scans` in file order.
+  ScanProblems prepare_scans(std::vector<LaserRecord>& records, std::string_view type, const Pose2& offset,
+                             std::vector<LaserScan>& scans) const {
+    const auto [range_min, range_max] = range_limits();
+    ScanProblems problems;
+    scans.reserve(records.size());
+    for (LaserRecord& record : records) {
       LaserScan& scan = record.scan;
       if (!record.has_own_geometry) {
-        const BeamGeometry geometry = beam_geometry(scan.ranges.size(), record.line, chosen_type);
+        const BeamGeometry geometry = beam_geometry(scan.ranges.size(), record.line, type);
         scan.angle_min = geometry.angle_min;
         scan.angle_increment = geometry.angle_increment;
         scan.range_max = range_max;
       }
       scan.range_min = range_min;
       if (scan.range_max <= scan.range_min) {
-        Where{file_, record.line, chosen_type}.fail(fmt::format(
+        Where{file_, record.line, type}.fail(fmt::format(
             "maximum range {} m is not above the minimum range {} m", scan.range_max, scan.range_min));
       }
       if (!params_.no_odometry) scan.odometry = record.robot_pose;
       scan.laser_offset = offset;
-      nonfinite += static_cast<std::size_t>(
+      problems.nonfinite += static_cast<std::size_t>(
           std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return !std::isfinite(r); }));
-      negative += static_cast<std::size_t>(
+      problems.negative += static_cast<std::size_t>(
           std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return std::isfinite(r) && r < 0.0f; }));
-      if (!log.scans.empty() && scan.timestamp < log.scans.back().timestamp) ++backwards;
-      log.scans.push_back(std::move(scan));
+      if (!scans.empty() && scan.timestamp < scans.back().timestamp) ++problems.backwards;
+      scans.push_back(std::move(scan));
     }
+    return problems;
+  }
 
-    if (backwards > 0) {
+  void add_end_warnings(const ScanProblems& problems, SensorLog& log) const {
+    if (problems.backwards > 0) {
       log.warnings.push_back(fmt::format("{}: {} of {} scan timestamps run backwards (kept in file order)", file_,
-                                         backwards, log.scans.size()));
+                                         problems.backwards, log.scans.size()));
     }
     if (odom_backwards_ > 0) {
       log.warnings.push_back(fmt::format("{}: {} of {} ODOM timestamps run backwards (kept in file order)", file_,
                                          odom_backwards_, odom_count_));
     }
-    if (nonfinite > 0) {
+    if (problems.nonfinite > 0) {
       log.warnings.push_back(fmt::format("{}: {} range readings are NaN or inf (kept; they count as invalid beams)",
-                                         file_, nonfinite));
+                                         file_, problems.nonfinite));
     }
-    if (negative > 0) {
+    if (problems.negative > 0) {
       log.warnings.push_back(fmt::format("{}: {} range readings are negative (kept; they count as invalid beams)",
-                                         file_, negative));
+                                         file_, problems.negative));
     }
     if (empty_scans_ > 0) {
       log.warnings.push_back(fmt::format("{}: skipped {} laser records with 0 readings", file_, empty_scans_));
@@ -272,14 +217,7 @@ class CarmenParser {
       log.warnings.push_back(fmt::format("{}:{}: unknown record type '{}' skipped ({} line{})", file_, u.first_line,
                                          shown(unknown_order_[i]), u.count, u.count == 1 ? "" : "s"));
     }
-    return log;
   }
-
- private:
-  struct UnknownType {
-    std::size_t first_line = 0;
-    std::size_t count = 0;
-  };
 
   // FLASER/RLASER n r1..rn x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
   void parse_old_laser(std::size_t line, std::string_view type, std::vector<LaserRecord>& out) {
