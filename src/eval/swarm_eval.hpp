@@ -21,90 +21,18 @@
 // "Covers t" is the rule of `eval relations`: the agent has a pose whose
 // timestamp is within max_time_diff of t.
 #include <cstddef>
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "eval/relation_graph.hpp"
 #include "eval/relations.hpp"
+#include "eval/swarm_output.hpp"
 #include "geometry/pose2.hpp"
-#include "io/trajectory/tum.hpp"
 
 namespace dsswarm {
-
-// One entry of encounters.json.
-struct SwarmEncounterEntry {
-  double time = 0.0;           // session clock, s
-  std::string a, b;            // agent names
-  double a_log_time = 0.0;     // timestamps of the scans exchanged
-  double b_log_time = 0.0;
-  Pose2 a_pose;                // a's pose in a's frame at the encounter
-  Pose2 b_pose;                // b's pose in b's frame
-  std::optional<Pose2> transform;  // b's frame in a's frame (a candidate only, when rejected)
-  bool accepted = false;
-  std::string reason;
-  std::optional<double> match_ms, merge_ms, bytes;
-};
-
-// Reads {"encounters": [...]}. Required per entry: time, agents, log_times,
-// poses, accepted; transform when accepted (may be null otherwise); reason,
-// match_ms, merge_ms, bytes optional; other keys are ignored (simulation adds
-// its own). Throws InputError naming the file, the entry and the field.
-std::vector<SwarmEncounterEntry> read_swarm_encounters(const std::filesystem::path& path);
-
-struct SwarmAgentOutput {
-  std::string name;
-  Trajectory own;                  // agents/<name>/trajectory.tum
-  std::optional<Trajectory> joint; // joint/<name>.tum, when its transform was known
-};
-
-struct SwarmOutput {
-  std::vector<SwarmAgentOutput> agents;  // sorted by name
-  std::vector<SwarmEncounterEntry> encounters;
-};
-
-// Reads a swarm output folder. encounters.json may be absent (no encounters);
-// agents/ must hold at least one agent with a trajectory.tum.
-SwarmOutput read_swarm_output(const std::filesystem::path& dir);
-
-// The truth between two scan timestamps, from relations alone:
-//   * the same timestamp (within max_time_diff): no motion;
-//   * else both timestamps must be relation endpoints (within max_time_diff),
-//     and the truth is the shortest chain of relations joining them (fewest
-//     relations, breadth-first, relations in file order), composed end to end
-//     (a relation walked from t2 to t1 counts inverted), if it has at most
-//     `max_hops` relations. One hop is the relation with exactly those
-//     timestamps. Each chained relation adds its own small error, so the hop
-//     count is reported with the result;
-//   * otherwise there is no truth ("no relation").
-class RelationGraph {
- public:
-  RelationGraph(const std::vector<Relation>& relations, double max_time_diff);
-
-  struct Truth {
-    Pose2 motion;     // from the pose at ta to the pose at tb, in ta's frame
-    std::size_t hops = 0;  // relations chained (0: the same scan)
-  };
-  std::optional<Truth> motion(double ta, double tb, std::size_t max_hops) const;
-
-  // Relation timestamps within `window` s of t, nearest first.
-  std::vector<double> endpoints_near(double t, double window) const;
-
- private:
-  std::optional<std::size_t> node_at(double t) const;
-
-  struct Edge {
-    std::size_t to;
-    std::size_t relation;
-    bool forward;  // walked from the relation's t1 to its t2
-  };
-  std::vector<Relation> relations_;
-  double max_time_diff_;
-  std::vector<double> node_times_;  // sorted; endpoints within max_time_diff share a node
-  std::vector<std::vector<Edge>> edges_;
-};
 
 struct SwarmEvalOptions {
   double max_time_diff = 0.001;  // s, as `eval relations`
