@@ -9,11 +9,12 @@
 namespace dsswarm {
 
 struct SwarmConfig {
-  // Loop closure is off in the swarm by default: the transform found at an
-  // encounter is not yet carried along when a robot's later closures move
-  // its map (encounters are not constraints in the pose graph), and on the
-  // real-data scenarios that costs more than the straighter maps gain
-  // (docs/loop_closure.md). {"loop_closure": {"enabled": true}} turns it on.
+  // Loop closure is off in the swarm by default: with it on, the map a robot
+  // places the other's scan in is the combination of its submaps, where a
+  // returning robot's current submap and older ones disagree (moved doors,
+  // people), and on the real-data scenarios far fewer encounters are
+  // accepted (docs/loop_closure.md, "In the swarm").
+  // {"loop_closure": {"enabled": true}} turns it on.
   SlamConfig slam = without_loop_closure();
   EncounterConfig encounter;
   // Robots that met with an accepted merge skip further encounters for this
