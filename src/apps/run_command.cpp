@@ -154,7 +154,7 @@ void add_run_command(CLI::App& app) {
 void add_config_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("config",
                                      "Print the default configuration (JSON, for --config): SLAM and swarm sections, "
-                                     "as `run` uses them (swarm, demo and agent: loop_closure.enabled is false)");
+                                     "as `run` uses them (swarm, demo and agent: loop_closure.enabled false, round_nodes 20)");
   cmd->callback([] {
     SwarmConfig defaults;
     defaults.slam = SlamConfig{};

@@ -122,14 +122,18 @@ TEST(SwarmConfigJson, ParsesTextInMemoryAsItLoadsFiles) {
   }
 }
 
-// One robot maps with loop closure by default; the swarm without, until
-// encounters follow the pose graph (swarm_config.hpp). A file turns it on.
+// One robot maps with loop closure by default; the swarm without
+// (swarm_config.hpp). A file turns it on and keeps the swarm's shorter
+// rounds unless it sets them too.
 TEST(SwarmConfigJson, LoopClosureIsOnForOneRobotOffForTheSwarmAndAFileTurnsItOn) {
   EXPECT_TRUE(SlamConfig{}.loop_closure.enabled);
   SwarmConfig c;
   EXPECT_FALSE(c.slam.loop_closure.enabled);
   parse_config(R"({"loop_closure": {"enabled": true}})", "inline.json", c);
   EXPECT_TRUE(c.slam.loop_closure.enabled);
+  EXPECT_LT(c.slam.loop_closure.round_nodes, SlamConfig{}.loop_closure.round_nodes);
+  parse_config(R"({"loop_closure": {"round_nodes": 30}})", "inline.json", c);
+  EXPECT_EQ(c.slam.loop_closure.round_nodes, 30);
 }
 
 // Found by fuzzing (fuzz/config.cpp): nlohmann's parser reports a number too

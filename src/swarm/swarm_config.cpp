@@ -4,6 +4,12 @@
 
 namespace dsswarm {
 
+SlamConfig swarm_slam_config() {
+  SlamConfig config = without_loop_closure();
+  config.loop_closure.round_nodes = 20;
+  return config;
+}
+
 void SwarmConfig::validate() const {
   slam.validate();
   encounter.validate();
