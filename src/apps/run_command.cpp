@@ -154,10 +154,14 @@ void add_run_command(CLI::App& app) {
 void add_config_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("config",
                                      "Print the default configuration (JSON, for --config): SLAM and swarm sections, "
-                                     "as `run` uses them (swarm, demo and agent: loop_closure.enabled false, round_nodes 20)");
-  cmd->callback([] {
+                                     "as `run` uses them, or with --swarm as swarm, demo, agent and launch do");
+  auto swarm = std::make_shared<bool>(false);
+  cmd->add_flag("--swarm", *swarm,
+                "The swarm commands' defaults: loop closure off, and a pose-graph round every 20 nodes when a file "
+                "turns it on (run's: on, 40)");
+  cmd->callback([swarm] {
     SwarmConfig defaults;
-    defaults.slam = SlamConfig{};
+    if (!*swarm) defaults.slam = SlamConfig{};
     fmt::print("{}\n", to_json(defaults).dump(2));
   });
 }

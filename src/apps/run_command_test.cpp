@@ -8,9 +8,11 @@
 
 #include "apps/cli_test_util.hpp"
 #include "common/test_files.hpp"
+#include "config/config_json.hpp"
 #include "io/logs/carmen_writer.hpp"
 #include "io/trajectory/tum.hpp"
 #include "sim/scenario.hpp"
+#include "swarm/swarm_config.hpp"
 
 namespace dsswarm {
 namespace {
@@ -53,6 +55,20 @@ TEST(RunCommand, MaxScansMustBePositive) {
     EXPECT_THROW(test::run_cli(add_run_command, {"run", log.string(), "--out", (dir / "o").string(), "--max-scans", bad}),
                  CLI::ParseError)
         << bad;
+}
+
+// `config` prints run's defaults; `config --swarm` the swarm commands', and a
+// file made from it gives a swarm exactly its defaults back.
+TEST(ConfigCommand, SwarmFlagPrintsTheSwarmCommandsDefaults) {
+  const auto run = nlohmann::json::parse(test::run_cli(add_config_command, {"config"}));
+  const auto swarm = nlohmann::json::parse(test::run_cli(add_config_command, {"config", "--swarm"}));
+  EXPECT_TRUE(run["loop_closure"]["enabled"].get<bool>());
+  EXPECT_FALSE(swarm["loop_closure"]["enabled"].get<bool>());
+  EXPECT_LT(swarm["loop_closure"]["round_nodes"].get<int>(), run["loop_closure"]["round_nodes"].get<int>());
+  SwarmConfig parsed;
+  parsed.slam = SlamConfig{};  // start from run's, as a file given to `swarm` overrides everything it names
+  parse_config(swarm.dump(), "printed.json", parsed);
+  EXPECT_EQ(to_json(parsed), to_json(SwarmConfig{}));
 }
 
 }  // namespace
