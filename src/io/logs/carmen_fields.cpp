@@ -8,18 +8,6 @@
 
 namespace dsswarm::carmen_detail {
 
-void split_fields(std::string_view line, Tokens& out) {
-  out.clear();
-  const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && is_space(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !is_space(line[i])) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
-}
-
 std::string shown(std::string_view token) {
   constexpr std::size_t kMax = 40;
   return token.size() <= kMax ? std::string(token) : std::string(token.substr(0, kMax)) + "...";

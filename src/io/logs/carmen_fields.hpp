@@ -1,7 +1,8 @@
 #pragma once
-// Field-level parsing for the CARMEN reader: splitting a record into fields
-// and reading numbers from them, with errors that name the file, line, record
-// and field. Internal to carmen_reader.cpp (not part of carmen_reader.hpp).
+// Field-level parsing for the CARMEN reader: reading numbers from a record's
+// fields (split by io/trajectory/text_fields.hpp), with errors that name the
+// file, line, record and field. Internal to carmen_reader.cpp (not part of
+// carmen_reader.hpp).
 #include <array>
 #include <charconv>
 #include <cstddef>
@@ -15,8 +16,6 @@
 namespace dsswarm::carmen_detail {
 
 using Tokens = std::vector<std::string_view>;
-
-void split_fields(std::string_view line, Tokens& out);
 
 // Parses the whole token or nothing ("1.5x" is not a number).
 template <class T>

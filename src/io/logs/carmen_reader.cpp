@@ -15,6 +15,7 @@
 #include "common/errors.hpp"
 #include "io/logs/carmen_fields.hpp"
 #include "io/logs/text_line_reader.hpp"
+#include "io/trajectory/text_fields.hpp"
 
 namespace dsswarm {
 
@@ -48,7 +49,6 @@ using carmen_detail::parse_whole;
 using carmen_detail::pose_fields;
 using carmen_detail::read_ranges;
 using carmen_detail::shown;
-using carmen_detail::split_fields;
 using carmen_detail::Tokens;
 using carmen_detail::Where;
 

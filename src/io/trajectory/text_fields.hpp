@@ -30,6 +30,8 @@ void for_each_data_line(std::istream& in, const std::string& source,
 
 // Whitespace-separated tokens of `line` (views into it).
 std::vector<std::string_view> split_fields(std::string_view line);
+// The same into `out` (cleared first): a reader of many lines keeps one buffer.
+void split_fields(std::string_view line, std::vector<std::string_view>& out);
 
 // Parses `token` as a finite decimal number. `where` is "file:line" and
 // `field` the field's name; both go into the InputError thrown on failure.
