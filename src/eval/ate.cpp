@@ -17,10 +17,15 @@ namespace dsswarm {
 
 namespace {
 
-// Least-squares rigid transform T (no scale) minimising Σ‖T·from_i − to_i‖²
-// (Horn / Umeyama). In 2D the rotation has a closed form: with centred points
-// a_i, b_i the objective is maximised at θ = atan2(Σ a_i×b_i, Σ a_i·b_i),
-// which never yields a reflection and needs no SVD.
+std::string span_of(const TimestampIndex& index) {
+  return index.empty() ? std::string("empty") : fmt::format("[{:.6f}, {:.6f}]", index.earliest(), index.latest());
+}
+
+}  // namespace
+
+// In 2D the rotation has a closed form: with centred points a_i, b_i the
+// objective is maximised at θ = atan2(Σ a_i×b_i, Σ a_i·b_i), which never
+// yields a reflection and needs no SVD.
 Pose2 fit_rigid_transform(const Eigen::Matrix2Xd& from, const Eigen::Matrix2Xd& to) {
   const Eigen::Vector2d from_centroid = from.rowwise().mean();
   const Eigen::Vector2d to_centroid = to.rowwise().mean();
@@ -31,13 +36,6 @@ Pose2 fit_rigid_transform(const Eigen::Matrix2Xd& from, const Eigen::Matrix2Xd& 
   const Eigen::Vector2d t = to_centroid - (rotation * from_centroid);
   return {t.x(), t.y(), theta};
 }
-
-
-std::string span_of(const TimestampIndex& index) {
-  return index.empty() ? std::string("empty") : fmt::format("[{:.6f}, {:.6f}]", index.earliest(), index.latest());
-}
-
-}  // namespace
 
 AteResult evaluate_ate(const Trajectory& estimate, const Trajectory& ground_truth, double max_time_diff) {
   require_valid_max_time_diff(max_time_diff);

@@ -5,6 +5,8 @@
 // position differences are summarised.
 #include <cstddef>
 
+#include <Eigen/Core>
+
 #include "geometry/pose2.hpp"
 #include "io/trajectory/tum.hpp"
 
@@ -18,6 +20,10 @@ struct AteResult {
   std::size_t matched = 0;  // estimate poses with a ground-truth pose within max_time_diff
   Pose2 alignment;          // maps estimate coordinates into ground-truth coordinates
 };
+
+// Least-squares rigid transform T (no scale) minimising Σ‖T·from_i − to_i‖²
+// (Horn / Umeyama); the columns of `from` and `to` are paired points.
+Pose2 fit_rigid_transform(const Eigen::Matrix2Xd& from, const Eigen::Matrix2Xd& to);
 
 // Each estimate pose is paired with the ground-truth pose nearest in time, if
 // within `max_time_diff` seconds (neither trajectory needs to be sorted).

@@ -8,6 +8,8 @@
 // * cross-agent: relations whose t1 only agent X covers and whose t2 only
 //   agent Y ≠ X covers, scored on the joint trajectories (one common frame);
 //   this is what merging buys: the two robots' poses are consistent with each other;
+//   and again with each pair's frame fitted to its cross relations in
+//   hindsight (cross_frame.hpp), which needs no merge;
 // * per encounter: the estimated relative pose of b w.r.t. a,
 //   pose_a⁻¹ ⊕ transform ⊕ pose_b, against the true motion between the two
 //   scans exchanged (log times ta, tb), see RelationGraph for the truth rule.
@@ -53,6 +55,11 @@ struct CrossAgentScore {
   std::size_t relations = 0;          // cross relations between the two
   std::size_t without_joint = 0;      // of those, not scored: an agent has no joint pose
   std::optional<RelationMetrics> metrics;
+  // The frame fitted to these relations in hindsight (cross_frame.hpp) from
+  // the agents' own trajectories, and the relations scored there: the part
+  // of the error no frame estimate could remove.
+  std::optional<Pose2> hindsight_frame;
+  std::optional<RelationMetrics> hindsight;
 };
 
 struct EncounterScore {

@@ -106,6 +106,15 @@ TEST(SwarmEval, CrossAgentRelationsAreScoredOnTheJointTrajectories) {
   EXPECT_EQ(ev.pairs[1].y, "c");
   EXPECT_EQ(ev.pairs[1].without_joint, 1u);
   EXPECT_FALSE(ev.pairs[1].metrics);
+  // The frame fitted in hindsight removes the 10 cm the encounter put in:
+  // what is left is a's 1% drift over the relations (a few mm).
+  ASSERT_TRUE(ev.pairs[0].hindsight);
+  EXPECT_EQ(ev.pairs[0].hindsight->used, 3u);
+  EXPECT_LT(ev.pairs[0].hindsight->trans_mean, 0.02);
+  EXPECT_FALSE(ev.pairs[1].hindsight_frame);  // one relation with c: no fit
+  const nlohmann::json j = to_json(ev);
+  EXPECT_LT(j["cross"]["pairs"][0]["hindsight_metrics"]["trans_mean"].get<double>(), 0.02);
+  EXPECT_NE(format_swarm_evaluation(ev).find("best frame"), std::string::npos);
 }
 
 TEST(SwarmEval, EncounterTransformsAgainstRelationTruth) {
