@@ -108,6 +108,94 @@ std::size_t agent_named(const SwarmOutput& output, const std::string& name) {
   throw InputError(fmt::format("encounters: no agent named '{}' among the trajectories", name));
 }
 
+// Which relations each agent covers at both ends, and which link two agents
+// (t1 covered by one only, t2 by another only), by pair (x, y) with x < y.
+struct Coverage {
+  std::vector<std::vector<Relation>> per_agent;
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<Relation>> cross;
+};
+
+Coverage cover(const std::vector<TimestampIndex>& own, const std::vector<Relation>& relations, double dt) {
+  Coverage c;
+  c.per_agent.resize(own.size());
+  for (const Relation& r : relations) {
+    std::vector<std::size_t> at1, at2;
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      const bool c1 = own[i].nearest(r.t1, dt).has_value();
+      const bool c2 = own[i].nearest(r.t2, dt).has_value();
+      if (c1) at1.push_back(i);
+      if (c2) at2.push_back(i);
+      if (c1 && c2) c.per_agent[i].push_back(r);
+    }
+    if (at1.size() == 1 && at2.size() == 1 && at1[0] != at2[0])
+      c.cross[{std::min(at1[0], at2[0]), std::max(at1[0], at2[0])}].push_back(r);
+  }
+  return c;
+}
+
+CrossAgentScore score_pair(const SwarmAgentOutput& x, const SwarmAgentOutput& y, const std::vector<Relation>& rels,
+                           double dt) {
+  CrossAgentScore c;
+  c.x = x.name;
+  c.y = y.name;
+  c.relations = rels.size();
+  if (x.joint && y.joint) {
+    c.metrics = score(concatenate(*x.joint, *y.joint), rels, dt);
+  } else {
+    c.without_joint = rels.size();
+  }
+  if ((c.hindsight_frame = fit_cross_frame(x.own, y.own, rels, dt))) {
+    Trajectory placed = y.own;
+    for (StampedPose& p : placed) p.pose = *c.hindsight_frame * p.pose;
+    c.hindsight = score(concatenate(x.own, placed), rels, dt);
+  }
+  return c;
+}
+
+void score_cross(const SwarmOutput& output, const Coverage& coverage, double dt, SwarmEvaluation& ev) {
+  Trajectory all_joint;
+  std::vector<Relation> all_cross;
+  for (const auto& [pair, rels] : coverage.cross) {
+    CrossAgentScore c = score_pair(output.agents[pair.first], output.agents[pair.second], rels, dt);
+    ev.cross_relations += c.relations;
+    ev.cross_without_joint += c.without_joint;
+    if (c.without_joint == 0) all_cross.insert(all_cross.end(), rels.begin(), rels.end());
+    ev.pairs.push_back(std::move(c));
+  }
+  for (const SwarmAgentOutput& a : output.agents)
+    if (a.joint) all_joint.insert(all_joint.end(), a.joint->begin(), a.joint->end());
+  ev.cross = score(all_joint, all_cross, dt);
+}
+
+EncounterScore score_encounter(const SwarmOutput& output, std::size_t k, const RelationGraph& graph,
+                               const std::vector<TimestampIndex>& own, const SwarmEvalOptions& options) {
+  EncounterScore s;
+  s.index = k;
+  s.entry = output.encounters[k];
+  s.a_time = s.entry.a_log_time;
+  s.b_time = s.entry.b_log_time;
+  if (s.entry.transform) s.estimated_motion = s.entry.a_pose.inverse() * *s.entry.transform * s.entry.b_pose;
+  s.truth = graph.motion(s.a_time, s.b_time, options.max_hops);
+  if (!s.truth && options.bridge > 0.0) {
+    const std::size_t ia = agent_named(output, s.entry.a), ib = agent_named(output, s.entry.b);
+    const auto pa = bridge_pose(graph, output.agents[ia].own, own[ia], s.entry.a_log_time, options);
+    const auto pb = bridge_pose(graph, output.agents[ib].own, own[ib], s.entry.b_log_time, options);
+    const auto truth = pa && pb ? graph.motion(pa->timestamp, pb->timestamp, options.max_hops) : std::nullopt;
+    if (truth) {
+      s.truth = truth;
+      s.a_time = pa->timestamp;
+      s.b_time = pb->timestamp;
+      if (s.entry.transform) s.estimated_motion = pa->pose.inverse() * *s.entry.transform * pb->pose;
+    }
+  }
+  if (s.scored()) {
+    const Pose2 error = between(s.truth->motion, *s.estimated_motion);
+    s.trans_error = std::hypot(error.x, error.y);
+    s.rot_error_deg = std::abs(error.theta) * kRadToDeg;
+  }
+  return s;
+}
+
 }  // namespace
 
 SwarmEvaluation evaluate_swarm(const SwarmOutput& output, const std::vector<Relation>& relations,
@@ -120,101 +208,26 @@ SwarmEvaluation evaluate_swarm(const SwarmOutput& output, const std::vector<Rela
   SwarmEvaluation ev;
   ev.options = options;
   ev.relations_total = relations.size();
-  const std::size_t n = output.agents.size();
 
   std::vector<TimestampIndex> own;
-  own.reserve(n);
+  own.reserve(output.agents.size());
   for (const SwarmAgentOutput& a : output.agents) own.emplace_back(a.own, a.name);
   for (const SwarmAgentOutput& a : output.agents) {
     if (!a.joint) continue;
     [[maybe_unused]] const TimestampIndex check(*a.joint, a.name + " joint");  // refuses non-finite poses
   }
 
-  // Who covers each end of each relation.
-  std::vector<std::vector<Relation>> per_agent(n);
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<Relation>> cross;  // (x, y) with x < y
-  for (const Relation& r : relations) {
-    std::vector<std::size_t> at1, at2;
-    for (std::size_t i = 0; i < n; ++i) {
-      const bool c1 = own[i].nearest(r.t1, dt).has_value();
-      const bool c2 = own[i].nearest(r.t2, dt).has_value();
-      if (c1) at1.push_back(i);
-      if (c2) at2.push_back(i);
-      if (c1 && c2) per_agent[i].push_back(r);
-    }
-    if (at1.size() == 1 && at2.size() == 1 && at1[0] != at2[0]) {
-      cross[{std::min(at1[0], at2[0]), std::max(at1[0], at2[0])}].push_back(r);
-    }
-  }
-
-  for (std::size_t i = 0; i < n; ++i) {
+  const Coverage coverage = cover(own, relations, dt);
+  for (std::size_t i = 0; i < output.agents.size(); ++i) {
     const SwarmAgentOutput& a = output.agents[i];
-    AgentRelationScore s;
-    s.name = a.name;
-    s.poses = a.own.size();
-    s.joint = a.joint.has_value();
-    s.relations_covered = per_agent[i].size();
-    s.metrics = score(a.own, per_agent[i], dt);
-    ev.agents.push_back(std::move(s));
+    ev.agents.push_back({a.name, a.own.size(), a.joint.has_value(), coverage.per_agent[i].size(),
+                         score(a.own, coverage.per_agent[i], dt)});
   }
-
-  Trajectory all_joint;
-  std::vector<Relation> all_cross;
-  for (const auto& [pair, rels] : cross) {
-    const SwarmAgentOutput& x = output.agents[pair.first];
-    const SwarmAgentOutput& y = output.agents[pair.second];
-    CrossAgentScore c;
-    c.x = x.name;
-    c.y = y.name;
-    c.relations = rels.size();
-    ev.cross_relations += rels.size();
-    if (x.joint && y.joint) {
-      c.metrics = score(concatenate(*x.joint, *y.joint), rels, dt);
-      all_cross.insert(all_cross.end(), rels.begin(), rels.end());
-    } else {
-      c.without_joint = rels.size();
-      ev.cross_without_joint += rels.size();
-    }
-    if ((c.hindsight_frame = fit_cross_frame(x.own, y.own, rels, dt))) {
-      Trajectory placed = y.own;
-      for (StampedPose& p : placed) p.pose = *c.hindsight_frame * p.pose;
-      c.hindsight = score(concatenate(x.own, placed), rels, dt);
-    }
-    ev.pairs.push_back(std::move(c));
-  }
-  for (const SwarmAgentOutput& a : output.agents)
-    if (a.joint) all_joint.insert(all_joint.end(), a.joint->begin(), a.joint->end());
-  ev.cross = score(all_joint, all_cross, dt);
+  score_cross(output, coverage, dt, ev);
 
   const RelationGraph graph(relations, dt);
-  for (std::size_t k = 0; k < output.encounters.size(); ++k) {
-    EncounterScore s;
-    s.index = k;
-    s.entry = output.encounters[k];
-    s.a_time = s.entry.a_log_time;
-    s.b_time = s.entry.b_log_time;
-    if (s.entry.transform) s.estimated_motion = s.entry.a_pose.inverse() * *s.entry.transform * s.entry.b_pose;
-    s.truth = graph.motion(s.a_time, s.b_time, options.max_hops);
-    if (!s.truth && options.bridge > 0.0) {
-      const std::size_t ia = agent_named(output, s.entry.a), ib = agent_named(output, s.entry.b);
-      const auto pa = bridge_pose(graph, output.agents[ia].own, own[ia], s.entry.a_log_time, options);
-      const auto pb = bridge_pose(graph, output.agents[ib].own, own[ib], s.entry.b_log_time, options);
-      if (pa && pb) {
-        if (const auto truth = graph.motion(pa->timestamp, pb->timestamp, options.max_hops)) {
-          s.truth = truth;
-          s.a_time = pa->timestamp;
-          s.b_time = pb->timestamp;
-          if (s.entry.transform) s.estimated_motion = pa->pose.inverse() * *s.entry.transform * pb->pose;
-        }
-      }
-    }
-    if (s.scored()) {
-      const Pose2 error = between(s.truth->motion, *s.estimated_motion);
-      s.trans_error = std::hypot(error.x, error.y);
-      s.rot_error_deg = std::abs(error.theta) * kRadToDeg;
-    }
-    ev.encounters.push_back(std::move(s));
-  }
+  for (std::size_t k = 0; k < output.encounters.size(); ++k)
+    ev.encounters.push_back(score_encounter(output, k, graph, own, options));
   return ev;
 }
 
