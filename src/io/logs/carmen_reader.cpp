@@ -14,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "io/logs/carmen_fields.hpp"
+#include "io/logs/carmen_params.hpp"
 #include "io/logs/text_line_reader.hpp"
 #include "io/trajectory/text_fields.hpp"
 
@@ -42,6 +43,7 @@ BeamGeometry span180_beam_geometry(std::size_t n) {
 
 namespace {
 
+using carmen_detail::CarmenParams;
 using carmen_detail::count_field;
 using carmen_detail::finite_field;
 using carmen_detail::number_field;
@@ -61,26 +63,6 @@ struct LaserRecord {
   bool has_own_geometry = false;  // ROBOTLASER1 states its beam layout
 };
 
-struct Param {
-  double value = 0.0;
-  std::size_t line = 0;
-};
-
-struct BadParam {
-  std::string key;
-  std::size_t line = 0;
-  std::string problem;
-};
-
-struct Params {
-  std::optional<Param> angle_min, angle_max, angle_increment, num_beams, range_min, range_max;
-  std::optional<Param> offset_x, offset_y, offset_theta;
-  bool no_odometry = false;  // "# PARAM odometry none", written by write_carmen
-
-  bool has_geometry() const { return angle_min || angle_max || angle_increment; }
-  bool has_offset() const { return offset_x || offset_y || offset_theta; }
-};
-
 // Record types CARMEN defines that carry nothing we use: skipped silently.
 constexpr std::array<std::string_view, 34> kKnownOtherRecords = {
     "PARAM",          "SYNC",           "TRUEPOS",        "RAWLASER1",       "RAWLASER2",
@@ -95,14 +77,16 @@ constexpr std::size_t kMaxUnknownTypeWarnings = 10;
 
 class CarmenParser {
  public:
-  CarmenParser(std::string file, const CarmenOptions& options) : file_(std::move(file)), options_(options) {}
+  CarmenParser(std::string file, const CarmenOptions& options)
+      : file_(std::move(file)), options_(options), params_(file_, options) {}
 
   void parse_line(std::string_view text, std::size_t line) {
     const std::size_t first = text.find_first_not_of(" \t");
     if (first == std::string_view::npos) return;
     text.remove_prefix(first);
     if (text.front() == '#') {
-      parse_comment(text.substr(1), line);
+      split_fields(text.substr(1), fields_);
+      if (fields_.size() >= 2 && fields_[0] == "PARAM") params_.parse(fields_, line);
       return;
     }
     split_fields(text, fields_);
@@ -128,8 +112,8 @@ class CarmenParser {
     log.source = file_;
     const auto [chosen, chosen_type] = choose_stream();
     note_ignored_streams(chosen_type, log.warnings);
-    check_bad_params(chosen_type, chosen->front().has_own_geometry, log.warnings);
-    const Pose2 offset = laser_offset(*chosen, log.warnings);
+    params_.check_bad(chosen_type, chosen->front().has_own_geometry, log.warnings);
+    const Pose2 offset = params_.laser_offset(implied_offsets(*chosen), log.warnings);
     const ScanProblems problems = prepare_scans(*chosen, chosen_type, offset, log.scans);
     add_end_warnings(problems, log);
     return log;
@@ -147,6 +131,14 @@ class CarmenParser {
     std::size_t backwards = 0;
   };
 
+  // Each record's laser pose in its robot's frame.
+  static std::vector<Pose2> implied_offsets(const std::vector<LaserRecord>& records) {
+    std::vector<Pose2> out;
+    out.reserve(records.size());
+    for (const LaserRecord& r : records) out.push_back(between(r.robot_pose, r.laser_pose));
+    return out;
+  }
+
   std::pair<std::vector<LaserRecord>*, std::string_view> choose_stream() {
     if (!flaser_.empty()) return {&flaser_, "FLASER"};
     if (!robotlaser_.empty()) return {&robotlaser_, "ROBOTLASER1"};
@@ -159,13 +151,13 @@ class CarmenParser {
   // offset, and moves their scans to `scans` in file order.
   ScanProblems prepare_scans(std::vector<LaserRecord>& records, std::string_view type, const Pose2& offset,
                              std::vector<LaserScan>& scans) const {
-    const auto [range_min, range_max] = range_limits();
+    const auto [range_min, range_max] = params_.range_limits();
     ScanProblems problems;
     scans.reserve(records.size());
     for (LaserRecord& record : records) {
       LaserScan& scan = record.scan;
       if (!record.has_own_geometry) {
-        const BeamGeometry geometry = beam_geometry(scan.ranges.size(), record.line, type);
+        const BeamGeometry geometry = params_.beam_geometry(scan.ranges.size(), record.line, type);
         scan.angle_min = geometry.angle_min;
         scan.angle_increment = geometry.angle_increment;
         scan.range_max = range_max;
@@ -175,7 +167,7 @@ class CarmenParser {
         Where{file_, record.line, type}.fail(fmt::format(
             "maximum range {} m is not above the minimum range {} m", scan.range_max, scan.range_min));
       }
-      if (!params_.no_odometry) scan.odometry = record.robot_pose;
+      if (!params_.no_odometry()) scan.odometry = record.robot_pose;
       scan.laser_offset = offset;
       problems.nonfinite += static_cast<std::size_t>(
           std::count_if(scan.ranges.begin(), scan.ranges.end(), [](float r) { return !std::isfinite(r); }));
@@ -323,160 +315,6 @@ class CarmenParser {
     ++odom_count_;
   }
 
-  // "# PARAM key value": the scan geometry of the whole file.
-  void parse_comment(std::string_view text, std::size_t line) {
-    split_fields(text, fields_);
-    if (fields_.size() < 2 || fields_[0] != "PARAM") return;
-    const std::string_view key = fields_[1];
-    const std::pair<std::string_view, std::optional<Param>*> numeric[] = {
-        {"laser_angle_min", &params_.angle_min},
-        {"laser_angle_max", &params_.angle_max},
-        {"laser_angle_increment", &params_.angle_increment},
-        {"laser_num_beams", &params_.num_beams},
-        {"laser_range_min", &params_.range_min},
-        {"laser_range_max", &params_.range_max},
-        {"laser_offset_x", &params_.offset_x},
-        {"laser_offset_y", &params_.offset_y},
-        {"laser_offset_theta", &params_.offset_theta},
-    };
-    const Where where{file_, line, "# PARAM"};
-    if (key == "odometry") {
-      if (fields_.size() < 3) where.fail("odometry: missing value");
-      params_.no_odometry = fields_[2] == "none";
-      return;
-    }
-    for (const auto& [name, slot] : numeric) {
-      if (key != name) continue;
-      double value = 0.0;
-      const std::string problem = param_problem(slot, value);
-      if (problem.empty()) {
-        *slot = Param{value, line};
-      } else {
-        bad_params_.push_back({std::string(name), line, problem});  // fatal only where the value is used
-      }
-      return;
-    }
-  }
-
-  // Parses the value of the PARAM line in fields_; says what is wrong with it ("" if nothing).
-  std::string param_problem(const std::optional<Param>* slot, double& value) const {
-    if (fields_.size() < 3) return "missing value";
-    if (!parse_whole(fields_[2], value)) return fmt::format("'{}' is not a number", shown(fields_[2]));
-    if (!std::isfinite(value)) return fmt::format("'{}' is not finite", shown(fields_[2]));
-    if (slot == &params_.num_beams && (value < 1.0 || value != std::floor(value) || value > 1e7))
-      return fmt::format("'{}' is not a positive whole number", shown(fields_[2]));
-    if (slot == &params_.angle_increment && value == 0.0) return "must not be 0";
-    return "";
-  }
-
-  // A broken `# PARAM` line is an error where its value would be used, else
-  // a warning: the records carry their own geometry (ROBOTLASER1), an option
-  // overrides it, or the scan poses give the laser offset instead.
-  void check_bad_params(std::string_view type, bool own_geometry, std::vector<std::string>& warnings) {
-    for (const BadParam& bad : bad_params_) {
-      const std::string what = fmt::format("{}:{}: # PARAM {}: {}", file_, bad.line, bad.key, bad.problem);
-      const std::string why_unused = unused_reason(bad.key, type, own_geometry);
-      if (why_unused.empty()) throw InputError(what);
-      warnings.push_back(fmt::format("{}; ignored ({})", what, why_unused));
-      if (bad.key.starts_with("laser_offset")) params_.offset_x = params_.offset_y = params_.offset_theta = {};
-    }
-  }
-
-  std::string unused_reason(const std::string& key, std::string_view type, bool own_geometry) const {
-    if (key.starts_with("laser_offset")) {
-      if (options_.laser_offset) return "the laser offset option overrides it";
-      if (!params_.no_odometry) return "the laser offset comes from the scan poses instead";
-      return "";
-    }
-    if (key == "laser_range_min") return "";  // applies to every record
-    if (own_geometry) return fmt::format("the {} records state their own beam layout and range", type);
-    if (key != "laser_range_max" && options_.beams != CarmenOptions::BeamConvention::FromParams)
-      return "the beam convention option overrides it";
-    return "";
-  }
-
-  BeamGeometry beam_geometry(std::size_t n, std::size_t line, std::string_view type) const {
-    using Convention = CarmenOptions::BeamConvention;
-    if (options_.beams == Convention::Classic) return classic_beam_geometry(n);
-    if (options_.beams == Convention::Span180) return span180_beam_geometry(n);
-    if (!params_.has_geometry()) return classic_beam_geometry(n);
-    if (params_.num_beams && static_cast<double>(n) != params_.num_beams->value) {
-      Where{file_, line, type}.fail(fmt::format("{} ranges, but '# PARAM laser_num_beams {}' (line {})", n,
-                                                params_.num_beams->value, params_.num_beams->line));
-    }
-    const double span_steps = static_cast<double>(n > 0 ? n - 1 : 0);
-    BeamGeometry geometry = classic_beam_geometry(n);
-    if (params_.angle_increment) {
-      geometry.angle_increment = params_.angle_increment->value;
-    } else if (params_.angle_min && params_.angle_max && n > 1) {
-      geometry.angle_increment = (params_.angle_max->value - params_.angle_min->value) / span_steps;
-    }
-    if (params_.angle_min) {
-      geometry.angle_min = params_.angle_min->value;
-    } else if (params_.angle_max) {
-      geometry.angle_min = params_.angle_max->value - span_steps * geometry.angle_increment;
-    } else {
-      geometry.angle_min = -span_steps * geometry.angle_increment / 2.0;
-    }
-    return geometry;
-  }
-
-  std::pair<double, double> range_limits() const {
-    const double range_min = params_.range_min ? params_.range_min->value : 0.0;
-    const double range_max = params_.range_max ? params_.range_max->value : kCarmenDefaultRangeMax;
-    if (range_min < 0.0) {
-      Where{file_, params_.range_min->line, "# PARAM"}.fail(
-          fmt::format("laser_range_min must not be negative, got {}", range_min));
-    }
-    if (params_.range_max && range_max <= range_min) {
-      Where{file_, params_.range_max->line, "# PARAM"}.fail(
-          fmt::format("laser_range_max ({}) must be above laser_range_min ({})", range_max, range_min));
-    }
-    return {range_min, range_max};
-  }
-
-  // Options override > `# PARAM` offsets > the offset implied by the first
-  // record's laser and robot poses. The poses of every record are checked
-  // against the chosen offset so a log with a moving laser is noticed.
-  Pose2 laser_offset(const std::vector<LaserRecord>& records, std::vector<std::string>& warnings) const {
-    if (options_.laser_offset) return *options_.laser_offset;
-    const auto implied = [](const LaserRecord& r) { return between(r.robot_pose, r.laser_pose); };
-    const auto differs = [](const Pose2& a, const Pose2& b, double metres, double radians) {
-      return std::hypot(a.x - b.x, a.y - b.y) > metres || std::abs(normalize_angle(a.theta - b.theta)) > radians;
-    };
-    // Logs store poses rounded to 1e-6, so implied offsets jitter at that level.
-    constexpr double kJitterMetres = 1e-3, kJitterRadians = 1e-3;
-    // A stated offset that disagrees by more than this with the poses deserves a word.
-    constexpr double kDisagreeMetres = 0.01, kDisagreeRadians = 0.01;
-    if (params_.has_offset()) {
-      const Pose2 stated(params_.offset_x ? params_.offset_x->value : 0.0,
-                         params_.offset_y ? params_.offset_y->value : 0.0,
-                         params_.offset_theta ? params_.offset_theta->value : 0.0);
-      if (!params_.no_odometry) {
-        const Pose2 first = implied(records.front());
-        if (differs(stated, first, kDisagreeMetres, kDisagreeRadians)) {
-          warnings.push_back(fmt::format(
-              "{}: '# PARAM laser_offset' ({:.4f}, {:.4f}, {:.4f}) differs from the offset implied by the scan poses "
-              "({:.4f}, {:.4f}, {:.4f}); using the PARAM",
-              file_, stated.x, stated.y, stated.theta, first.x, first.y, first.theta));
-        }
-      }
-      return stated;
-    }
-    if (params_.no_odometry) return Pose2{};
-    const Pose2 offset = implied(records.front());
-    const std::size_t varying = static_cast<std::size_t>(std::count_if(
-        records.begin(), records.end(),
-        [&](const LaserRecord& r) { return differs(implied(r), offset, kJitterMetres, kJitterRadians); }));
-    if (varying > 0) {
-      warnings.push_back(fmt::format(
-          "{}: the laser offset implied by the scan poses varies in {} of {} scans; using the first one "
-          "({:.4f}, {:.4f}, {:.4f})",
-          file_, varying, records.size(), offset.x, offset.y, offset.theta));
-    }
-    return offset;
-  }
-
   void note_ignored_streams(std::string_view chosen, std::vector<std::string>& warnings) const {
     const std::pair<std::string_view, std::size_t> streams[] = {
         {"FLASER", flaser_.size()}, {"ROBOTLASER1", robotlaser_.size()}, {"RLASER", rlaser_.size()}};
@@ -487,11 +325,11 @@ class CarmenParser {
     }
   }
 
+
   std::string file_;
   const CarmenOptions& options_;
   Tokens fields_;
-  Params params_;
-  std::vector<BadParam> bad_params_;
+  CarmenParams params_;
   std::vector<LaserRecord> flaser_, rlaser_, robotlaser_;
   std::size_t empty_scans_ = 0;
   std::size_t odom_count_ = 0;
