@@ -78,7 +78,7 @@ constexpr std::size_t kMaxUnknownTypeWarnings = 10;
 class CarmenParser {
  public:
   CarmenParser(std::string file, const CarmenOptions& options)
-      : file_(std::move(file)), options_(options), params_(file_, options) {}
+      : file_(std::move(file)), params_(file_, options) {}
 
   void parse_line(std::string_view text, std::size_t line) {
     const std::size_t first = text.find_first_not_of(" \t");
@@ -327,7 +327,6 @@ class CarmenParser {
 
 
   std::string file_;
-  const CarmenOptions& options_;
   Tokens fields_;
   CarmenParams params_;
   std::vector<LaserRecord> flaser_, rlaser_, robotlaser_;
