@@ -47,7 +47,8 @@ std::vector<Body> seed_bodies() {
           offer,
           Decline{7, "no scan yet"},
           placement,
-          Chunk{7, 1, 3, 150000, 0xdeadbeef, std::vector<std::uint8_t>(64, 0xab)}};
+          Chunk{7, 1, 3, 150000, 0xdeadbeef, std::vector<std::uint8_t>(64, 0xab)},
+          Moved{MapMoves{17, {{0, {0.0, 0.0, 0.0}}, {3, {12.5, -4.0, 1.25}}}, {{7, {1.5, -2.0, 0.3}, {1.6, -2.1, 0.31}}}}}};
 }
 
 }  // namespace

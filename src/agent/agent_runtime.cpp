@@ -221,6 +221,10 @@ void AgentRuntime::handle(const protocol::Message& m, std::size_t bytes, double 
     on_proximity(*p, t);
     return;
   }
+  if (std::holds_alternative<protocol::Moved>(m.body)) {
+    ++moved_received_;
+    moved_bytes_received_ += bytes;
+  }
   const std::uint64_t id = encounter_of(m.body);
   {
     std::lock_guard tl(trigger_mutex_);
@@ -344,6 +348,8 @@ AgentReport AgentRuntime::report() const {
     std::lock_guard lock(engine_mutex_);
     r.status = status(now());
     r.rejected_by_reason = gate_.rejected_by_reason();
+    r.moved_received = moved_received_;
+    r.moved_bytes_received = moved_bytes_received_;
   }
   std::lock_guard lock(report_mutex_);
   r.wall_seconds = now();

@@ -71,6 +71,7 @@ struct AgentReport {
   std::map<std::string, std::uint64_t> rejected_by_reason;
   std::uint64_t triggers_late = 0;
   std::uint64_t scans_in_checkpoint = 0;  // resumed: scans received again that the checkpoint holds
+  std::uint64_t moved_received = 0, moved_bytes_received = 0;  // peers' word that their maps moved
   std::vector<protocol::EncounterOutcome> outcomes;
 };
 
@@ -147,6 +148,7 @@ class AgentRuntime {
   std::atomic<std::size_t> open_encounters_{0};
   std::atomic<std::uint32_t> decided_{0}, accepted_{0};
   std::atomic<std::uint64_t> messages_rejected_{0};
+  std::uint64_t moved_received_ = 0, moved_bytes_received_ = 0;  // under engine_mutex_
   std::atomic<double> last_merge_{-1.0};  // s since start, -1: never
   std::atomic<double> rate_{0.0};         // scans processed per second over the last heartbeat period
   protocol::MessageStamper heartbeats_;

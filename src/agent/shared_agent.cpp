@@ -142,7 +142,7 @@ std::optional<Pose2> SharedAgent::known_frame(const std::string& origin) const {
 void SharedAgent::merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
                         std::uint64_t encounter) {
   std::lock_guard lock(mutex_);
-  agent_->tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self);
+  agent_->tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self, encounter);
   if (!agent_->absorb(snapshot, sender_in_self)) return;
   std::vector<std::uint64_t> encounters{encounter};
   if (job_) {  // not started yet: the new job holds everything it would have
@@ -151,6 +151,21 @@ void SharedAgent::merge(MapSnapshot snapshot, const Pose2& sender_in_self, const
   }
   job_ = Job{agent_->compose_job(), std::move(encounters)};
   wake_composer_.notify_all();
+}
+
+std::uint64_t SharedAgent::graph_revision() const {
+  std::lock_guard lock(mutex_);
+  return agent_->graph_revision();
+}
+
+MapMoves SharedAgent::map_moves(const std::vector<TieScan>& ties) const {
+  std::lock_guard lock(mutex_);
+  return agent_->moves(ties);
+}
+
+void SharedAgent::follow(const std::string& peer, const MapMoves& moves) {
+  std::lock_guard lock(mutex_);
+  agent_->follow(peer, moves);
 }
 
 bool SharedAgent::composing() const {

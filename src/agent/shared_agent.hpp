@@ -42,6 +42,9 @@ class SharedAgent : public protocol::AgentPort {
   std::optional<Pose2> known_frame(const std::string& origin) const override;
   void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
              std::uint64_t encounter) override;
+  std::uint64_t graph_revision() const override;
+  MapMoves map_moves(const std::vector<TieScan>& ties) const override;
+  void follow(const std::string& peer, const MapMoves& moves) override;
 
   // Reads under the lock.
   template <class F>

@@ -95,6 +95,8 @@ GatheredRun gather_launch(const fs::path& out, const std::vector<std::string>& n
       continue;
     }
     g.run.agents.push_back(agent_result(dir, name, stats));
+    g.run.moved_messages += stats.value("moved_received", std::size_t{0});
+    g.run.moved_bytes += stats.value("moved_bytes_received", std::size_t{0});
     g.agent_stats.push_back(std::move(stats));
     outcomes.push_back(read_outcomes(dir / "encounters.json"));
   }

@@ -129,6 +129,8 @@ nlohmann::json summary(const SwarmRunResult& run, const std::vector<EncounterTru
   stats["mean_match_ms"] = match_ms / n;
   stats["mean_merge_ms"] = accepted > 0 ? merge_ms / static_cast<double>(accepted) : 0.0;
   stats["mean_bytes"] = bytes / n;
+  stats["moved_messages"] = run.moved_messages;
+  stats["moved_bytes"] = run.moved_bytes;
   if (scored) {
     stats["worst_accepted_error"] = {worst.metres, worst.degrees};
     stats["worst_accepted_causal_error"] = {worst_causal.metres, worst_causal.degrees};
@@ -158,6 +160,8 @@ SwarmRunResult run_result(const SwarmSession& s) {
   SwarmRunResult run;
   run.encounters = s.encounters();
   run.events_skipped = s.events_skipped();
+  run.moved_messages = s.moved_messages();
+  run.moved_bytes = s.moved_bytes();
   run.config = s.config();
   auto shared = [](const MultiResMap& m) { return std::shared_ptr<const MultiResMap>(&m, [](const MultiResMap*) {}); };
   for (std::size_t i = 0; i < s.agents(); ++i) {

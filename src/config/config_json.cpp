@@ -269,7 +269,9 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"max_open_encounters", DSS_SWARM_FIELD(std::size_t, max_open_encounters)},
         {"max_pending_confirmations", DSS_SWARM_FIELD(std::size_t, max_pending_confirmations)},
         {"remembered_encounters", DSS_SWARM_FIELD(std::size_t, remembered_encounters)},
-        {"max_transfer_bytes", DSS_SWARM_FIELD(std::size_t, max_transfer_bytes)}}},
+        {"max_transfer_bytes", DSS_SWARM_FIELD(std::size_t, max_transfer_bytes)},
+        {"moves_interval", DSS_SWARM_FIELD(double, moves_interval)},
+        {"max_followed_encounters", DSS_SWARM_FIELD(std::size_t, max_followed_encounters)}}},
   };
   return table;
 }

@@ -30,6 +30,9 @@ struct SwarmRunResult {
   std::vector<EncounterRecord> encounters;
   std::size_t events_skipped = 0;
   SwarmConfig config;
+  // Word of where loop closing moved a merged map (protocol/followers.hpp),
+  // all robots together (robot processes: as received).
+  std::size_t moved_messages = 0, moved_bytes = 0;
 };
 
 // Ground truth of a simulated swarm: per agent, the true world pose at each

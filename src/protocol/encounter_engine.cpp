@@ -56,7 +56,11 @@ struct EncounterEngine::Exchange {
 
 EncounterEngine::EncounterEngine(std::string self, const SwarmConfig& config, AgentPort& port,
                                  std::uint64_t incarnation)
-    : self_(std::move(self)), config_(config), port_(port), stamper_(self_, incarnation) {
+    : self_(std::move(self)),
+      config_(config),
+      port_(port),
+      stamper_(self_, incarnation),
+      followers_(config.moves_interval, config.max_followed_encounters) {
   config_.validate();
 }
 
@@ -229,6 +233,8 @@ void EncounterEngine::receive(const Message& message, std::size_t wire_bytes, do
     on_chunk(from, *c, wire_bytes, now);
   } else if (const auto* d = std::get_if<Decline>(&message.body)) {
     on_decline(from, *d, wire_bytes, now);
+  } else if (const auto* mv = std::get_if<Moved>(&message.body)) {
+    if (followers_.newer(from, message.header.incarnation, mv->moves.revision)) port_.follow(from, mv->moves);
   }
   // Heartbeats are the agent's business.
   resume_waiting(now);
@@ -371,6 +377,7 @@ void EncounterEngine::absorb_transfer(Exchange& x, double now) {
   const auto t0 = std::chrono::steady_clock::now();
   x.outcome.layers_received = snapshot.layers.size();
   port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.mine, x.id);
+  followers_.add(x.peer, {x.id, x.mine.view.scan_index, x.mine.view.pose});
   x.outcome.merge_ms = ms_since(t0);
   peers_[x.peer].last_merge = x.outcome.started;  // from the event, as robots that finish at different moments agree
   finish(key, EncounterOutcome::End::accepted, "", now);
@@ -442,6 +449,18 @@ void EncounterEngine::tick(double now) {
     end_waiting(key, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, reason, now);
   }
   resume_waiting(now);
+  announce_moves(now);
+}
+
+void EncounterEngine::announce_moves(double now, bool force) {
+  const std::vector<std::string> due = followers_.due(port_.graph_revision(), now, force);
+  if (due.empty()) return;
+  const std::uint64_t revision = port_.graph_revision();
+  for (const std::string& peer : due) {
+    MapMoves moves = port_.map_moves(followers_.ties(peer));
+    if (!moves.pieces.empty() || !moves.ties.empty()) send(nullptr, peer, Moved{std::move(moves)});
+    followers_.told(peer, revision, now);
+  }
 }
 
 }  // namespace dsswarm::protocol

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "protocol/followers.hpp"
 #include "protocol/gate.hpp"
 #include "protocol/messages.hpp"
 #include "protocol/transfer.hpp"
@@ -61,6 +62,13 @@ class AgentPort {
   // the encounter itself ties the two frames (SwarmAgent::tie).
   virtual void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const CapturedView& at,
                      std::uint64_t encounter) = 0;
+  // Loop closing (followers.hpp): a number that grows whenever it moves this
+  // robot's map; where the map lies now for a peer that follows it (its
+  // scans at `ties`); and a peer's word that its map moved. The defaults
+  // are a robot whose map never moves.
+  virtual std::uint64_t graph_revision() const { return 0; }
+  virtual MapMoves map_moves(const std::vector<TieScan>& /*ties*/) const { return {}; }
+  virtual void follow(const std::string& /*peer*/, const MapMoves& /*moves*/) {}
 };
 
 struct EncounterOutcome {
@@ -103,8 +111,12 @@ class EncounterEngine {
   void drop_peer(const std::string& peer, const std::string& why, double now);
   // Abandons every open encounter (this robot stops).
   void abandon_all(const std::string& why, double now);
-  // Abandons encounters older than the exchange timeout.
+  // Abandons encounters older than the exchange timeout; announce_moves().
   void tick(double now);
+  // Tells the peers that merged this robot's map where it lies now, if loop
+  // closing moved it and they are due word (followers.hpp; all of them when
+  // `force`).
+  void announce_moves(double now, bool force = false);
 
   std::vector<Outgoing> take_outbox() { return std::exchange(outbox_, {}); }
   std::vector<EncounterOutcome> take_outcomes() { return std::exchange(outcomes_, {}); }
@@ -161,6 +173,7 @@ class EncounterEngine {
   std::deque<Key> ended_order_;   // the oldest forgotten first
   std::vector<Outgoing> outbox_;
   std::vector<EncounterOutcome> outcomes_;
+  Followers followers_;
 };
 
 }  // namespace dsswarm::protocol

@@ -50,7 +50,18 @@ class FakeRobot : public AgentPort {
     knowledge.absorb(snapshot, sender_in_self);
   }
 
+  // Loop closing as the engine sees it: a revision, and its one submap at x = revision.
+  std::uint64_t graph_revision() const override { return revision; }
+  MapMoves map_moves(const std::vector<TieScan>& ties) const override {
+    MapMoves m{revision, {{1, Pose2(static_cast<double>(revision), 0.0, 0.0)}}, {}};
+    for (const TieScan& t : ties) m.ties.push_back({t.encounter, t.offered, t.offered * Pose2(0.1, 0.0, 0.0)});
+    return m;
+  }
+  void follow(const std::string& peer, const MapMoves& moves) override { followed.emplace_back(peer, moves); }
+
   MapKnowledge knowledge;
+  std::uint64_t revision = 0;
+  std::vector<std::pair<std::string, MapMoves>> followed;
   std::shared_ptr<MultiResMap> own;
   EncounterView view;
   int merges = 0;
@@ -134,6 +145,39 @@ TEST(EncounterEngine, BothRobotsAcceptTheSameTransformAndMergeWhatTheOtherLacks)
   EXPECT_EQ(again[0].snapshot_bytes_received, 0u);
   EXPECT_LT(again[0].bytes_received, oa[0].bytes_received - b_map_bytes + 100);
   EXPECT_EQ(p.a.merges, 1);
+}
+
+TEST(EncounterEngine, APeerThatMergedHearsWhereLoopClosingMovedTheMapAndNoOneElseDoes) {
+  Pair p(unconfirmed());
+  p.a.revision = 3;
+  p.ea.announce_moves(0.0, true);  // nobody holds a's map yet
+  EXPECT_TRUE(p.ea.take_outbox().empty());
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  p.pump(0.0);
+  ASSERT_EQ(p.ea.take_outcomes().at(0).end, End::accepted);
+  p.eb.take_outcomes();
+  p.ea.tick(1.0);  // b merged a's map at revision 3: it hears of it once
+  p.pump(1.0);
+  ASSERT_EQ(p.b.followed.size(), 1u);
+  EXPECT_EQ(p.b.followed[0].first, "a");
+  const MapMoves& m = p.b.followed[0].second;
+  EXPECT_EQ(m.revision, 3u);
+  ASSERT_EQ(m.ties.size(), 1u);
+  EXPECT_EQ(m.ties[0].encounter, 1u);
+  EXPECT_TRUE(same(m.ties[0].then, p.a.view.pose));  // a's scan as it offered it
+  p.a.revision = 4;
+  p.ea.tick(3.0);  // moved, but b heard too recently (the interval is 5 s)
+  p.pump(3.0);
+  EXPECT_EQ(p.b.followed.size(), 1u);
+  p.ea.tick(6.5);
+  p.pump(6.5);
+  ASSERT_EQ(p.b.followed.size(), 2u);
+  p.ea.tick(30.0);  // nothing moved since
+  p.pump(30.0);
+  ASSERT_EQ(p.b.followed.size(), 2u);
+  EXPECT_EQ(p.b.followed[1].second.revision, 4u);
+  EXPECT_TRUE(p.a.followed.empty());  // b's map never moved
 }
 
 TEST(EncounterEngine, TheOutcomeDoesNotDependOnWhoHearsOfTheEncounterFirst) {

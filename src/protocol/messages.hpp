@@ -17,6 +17,12 @@
 //      receives.
 // A robot that cannot take part (no scan yet, merged with that peer moments
 // ago, merging off) answers with a Decline.
+//
+// After an accepted encounter, a robot with loop closure on tells the peer
+// (a Moved, at most every `moves_interval` s) whenever its loop closures
+// moved its submaps or its scan of that encounter: the peer's copy of its
+// map and the tie between the two graphs follow (swarm/map_snapshot.hpp,
+// MapMoves). Older agents refuse this kind and count it; nothing else changes.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -40,6 +46,7 @@ enum class Kind : std::uint8_t {
   decline = 4,
   placement = 5,
   chunk = 6,
+  moved = 7,
 };
 const char* kind_name(Kind kind);
 
@@ -119,7 +126,12 @@ struct Chunk {
   std::vector<std::uint8_t> data;
 };
 
-using Body = std::variant<Heartbeat, Proximity, Offer, Decline, Placement, Chunk>;
+// The sender's map moved since the recipient took a copy (see above).
+struct Moved {
+  MapMoves moves;
+};
+
+using Body = std::variant<Heartbeat, Proximity, Offer, Decline, Placement, Chunk, Moved>;
 
 struct Message {
   Header header;

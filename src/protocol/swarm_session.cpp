@@ -45,10 +45,13 @@ struct SwarmSession::Robot {
       return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
     }
     void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
-               std::uint64_t) override {
-      agent_.tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self);
+               std::uint64_t encounter) override {
+      agent_.tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self, encounter);
       agent_.merge(snapshot, sender_in_self);
     }
+    std::uint64_t graph_revision() const override { return agent_.graph_revision(); }
+    MapMoves map_moves(const std::vector<TieScan>& ties) const override { return agent_.moves(ties); }
+    void follow(const std::string& peer, const MapMoves& moves) override { agent_.follow(peer, moves); }
 
    private:
     SwarmAgent& agent_;
@@ -117,6 +120,7 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
   std::vector<std::size_t> next(streams_.size(), 0);
   std::size_t next_event = 0;
   const std::size_t report_every = std::max<std::size_t>(1, total / 20);
+  double end = 0.0;  // the clock of the last scan
   for (;;) {
     // The earliest pending scan over all agents; events due before it run first.
     std::size_t who = streams_.size();
@@ -136,8 +140,16 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
     AgentTrack& track = tracks_[who];
     track.steps.push_back(agents_[who]->process(scan));
     for (const PoseRevision& r : track.steps.back().revised) track.steps[r.index].pose = r.pose;
+    robots_[who]->engine.announce_moves(when);
+    pump(when);
+    end = when;
     if (progress && ++done % report_every == 0) progress(done, total);
   }
+  // Every robot's last round, then the others' last word on where that left
+  // their maps, and a round more that follows it.
+  for (auto& a : agents_) a->finish(false);
+  for (auto& r : robots_) r->engine.announce_moves(end, true);
+  pump(end);
   // The poses as loop closing last optimized them, like `run` writes.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     agents_[i]->finish();
@@ -157,7 +169,12 @@ void SwarmSession::pump(double now) {
         for (auto& to : robots_) {
           if (to->engine.self() != out.recipient) continue;
           protocol::MessageGate::Verdict v = to->gate.admit(out.bytes);
-          if (v.message) to->engine.receive(*v.message, out.bytes.size(), now);
+          if (!v.message) continue;
+          if (std::holds_alternative<protocol::Moved>(v.message->body)) {
+            ++moved_messages_;
+            moved_bytes_ += out.bytes.size();
+          }
+          to->engine.receive(*v.message, out.bytes.size(), now);
         }
       }
   }

@@ -75,6 +75,9 @@ class SwarmSession {
   std::size_t events_skipped() const { return skipped_.size(); }
   const std::vector<std::string>& skipped() const { return skipped_; }
   const SwarmConfig& config() const { return config_; }
+  // Moved messages (protocol/followers.hpp) all robots sent, and their bytes.
+  std::size_t moved_messages() const { return moved_messages_; }
+  std::size_t moved_bytes() const { return moved_bytes_; }
 
  private:
   struct Robot;
@@ -89,6 +92,7 @@ class SwarmSession {
   std::vector<AgentTrack> tracks_;
   std::vector<EncounterRecord> records_;
   std::vector<std::string> skipped_;
+  std::size_t moved_messages_ = 0, moved_bytes_ = 0;
 };
 
 }  // namespace dsswarm

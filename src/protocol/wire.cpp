@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <cmath>
+#include <set>
 #include <string_view>
 
 #include "common/agent_name.hpp"
@@ -114,6 +115,21 @@ void put_body(ByteWriter& w, const Chunk& m) {
   w.u32(m.total_crc);
   w.u32(static_cast<std::uint32_t>(m.data.size()));
   w.bytes().insert(w.bytes().end(), m.data.begin(), m.data.end());
+}
+
+void put_body(ByteWriter& w, const Moved& m) {
+  w.u64(m.moves.revision);
+  w.u32(static_cast<std::uint32_t>(m.moves.pieces.size()));
+  for (const PiecePose& p : m.moves.pieces) {
+    w.i32(p.id);
+    put(w, p.pose);
+  }
+  w.u32(static_cast<std::uint32_t>(m.moves.ties.size()));
+  for (const TieMove& t : m.moves.ties) {
+    w.u64(t.encounter);
+    put(w, t.then);
+    put(w, t.now);
+  }
 }
 
 // ---- decoding -------------------------------------------------------------
@@ -292,6 +308,29 @@ Body read_chunk(BodyReader& b) {
   return m;
 }
 
+Body read_moved(BodyReader& b) {
+  Moved m;
+  m.moves.revision = b.raw().u64("revision");
+  const std::uint32_t n = b.count("submap poses", b.limits().max_pieces, 28);
+  std::set<std::int32_t> ids;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    PiecePose p;
+    p.id = b.raw().i32("submap id");
+    p.pose = b.pose("submap pose");
+    if (!ids.insert(p.id).second) b.fail(fmt::format("submap {} is listed twice", p.id));
+    m.moves.pieces.push_back(p);
+  }
+  const std::uint32_t k = b.count("encounter poses", b.limits().max_ties, 56);
+  for (std::uint32_t i = 0; i < k; ++i) {
+    TieMove t;
+    t.encounter = b.raw().u64("encounter id");
+    t.then = b.pose("encounter pose then");
+    t.now = b.pose("encounter pose now");
+    m.moves.ties.push_back(t);
+  }
+  return m;
+}
+
 Body read_body(Kind kind, BodyReader& b) {
   switch (kind) {
     case Kind::heartbeat: return read_heartbeat(b);
@@ -300,11 +339,12 @@ Body read_body(Kind kind, BodyReader& b) {
     case Kind::decline: return read_decline(b);
     case Kind::placement: return read_placement(b);
     case Kind::chunk: return read_chunk(b);
+    case Kind::moved: return read_moved(b);
   }
   b.fail(fmt::format("unknown message kind {}", static_cast<int>(kind)));
 }
 
-bool known_kind(std::uint8_t k) { return k >= static_cast<std::uint8_t>(Kind::heartbeat) && k <= static_cast<std::uint8_t>(Kind::chunk); }
+bool known_kind(std::uint8_t k) { return k >= static_cast<std::uint8_t>(Kind::heartbeat) && k <= static_cast<std::uint8_t>(Kind::moved); }
 
 Message decode_checked(std::span<const std::uint8_t> bytes, const WireLimits& limits) {
   if (bytes.size() < kMinMessageBytes)
@@ -349,6 +389,7 @@ const char* kind_name(Kind kind) {
     case Kind::decline: return "decline";
     case Kind::placement: return "placement";
     case Kind::chunk: return "chunk";
+    case Kind::moved: return "moved";
   }
   return "unknown";
 }
@@ -362,7 +403,8 @@ Kind kind_of(const Body& body) {
         else if constexpr (std::is_same_v<T, Offer>) return Kind::offer;
         else if constexpr (std::is_same_v<T, Decline>) return Kind::decline;
         else if constexpr (std::is_same_v<T, Placement>) return Kind::placement;
-        else return Kind::chunk;
+        else if constexpr (std::is_same_v<T, Chunk>) return Kind::chunk;
+        else return Kind::moved;
       },
       body);
 }

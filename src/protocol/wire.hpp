@@ -12,7 +12,7 @@
 //
 // decode() checks everything before anything is used: magic, version, kind,
 // sizes against the limits, the checksum, names, finite numbers, ratios in
-// [0, 1], chunk indices. A peer's bytes can at worst be refused.
+// [0, 1], chunk indices, unique submap ids. A peer's bytes can at worst be refused.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -36,6 +36,8 @@ struct WireLimits {
   std::size_t max_inventory = 1024;           // layers an offer may list
   std::size_t max_confirmations = 64;
   std::size_t max_text = 1024;                // a decline's reason
+  std::size_t max_pieces = 1 << 16;           // submap poses a Moved may carry
+  std::size_t max_ties = 4096;                // encounter poses a Moved may carry
   std::uint32_t max_chunks = 1 << 16;         // per transfer
   std::uint64_t max_transfer_bytes = 1ull << 30;
 };

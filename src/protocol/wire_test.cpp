@@ -39,6 +39,14 @@ Placement sample_placement() {
   return p;
 }
 
+Moved sample_moved() {
+  Moved m;
+  m.moves.revision = 17;
+  m.moves.pieces = {{0, {0.0, 0.0, 0.0}}, {3, {12.5, -4.0, 1.25}}};
+  m.moves.ties = {{7, {1.5, -2.0, 0.3}, {1.6, -2.1, 0.31}}};
+  return m;
+}
+
 // Re-seals a message whose bytes a test altered, so that only the change is wrong.
 void reseal(std::vector<std::uint8_t>& bytes) {
   const auto crc = static_cast<std::uint32_t>(crc32_z(0, bytes.data(), bytes.size() - 4));
@@ -58,7 +66,8 @@ TEST(Wire, EveryKindRoundTrips) {
   AgentStatus s{12.5, 100, 90, 10, 9.5, 2, 3, 1, 4.5, 88, 6};
   Proximity near{"robot1", "robot2", 99, 976052000.5, std::numeric_limits<double>::quiet_NaN()};
   Chunk c{7, 1, 3, 150000, 0xdeadbeef, std::vector<std::uint8_t>(1000, 0xab)};
-  const std::vector<Body> bodies{Heartbeat{s}, near, sample_offer(), Decline{7, "no scan yet"}, sample_placement(), c};
+  const std::vector<Body> bodies{Heartbeat{s}, near, sample_offer(), Decline{7, "no scan yet"}, sample_placement(), c,
+                                 sample_moved()};
   for (const Body& body : bodies) {
     const Message in = with(body);
     const Message out = decode(encode(in));
@@ -76,6 +85,10 @@ TEST(Wire, EveryKindRoundTrips) {
   ASSERT_TRUE(p.placement.located.runner_up);
   EXPECT_DOUBLE_EQ(p.placement.located.runner_up->surroundings_score, 0.2);
   EXPECT_TRUE(std::isnan(std::get<Proximity>(decode(encode(with(near))).body).b_stamp));
+  const MapMoves m = std::get<Moved>(decode(encode(with(sample_moved()))).body).moves;
+  ASSERT_EQ(m.pieces.size(), 2u);
+  EXPECT_EQ(m.pieces[1].id, 3);
+  EXPECT_DOUBLE_EQ(m.ties[0].now.theta, 0.31);
 }
 
 TEST(Wire, DamagedOrForeignBytesAreRefusedWithTheReason) {
@@ -129,6 +142,15 @@ TEST(Wire, NonsenseValuesAreRefusedBeforeUse) {
   Chunk too_big{7, 0, 1, std::uint64_t{1} << 40, 0, {1}};
   EXPECT_NE(error_of(encode(with(too_big))).find("at most"), std::string::npos);
   EXPECT_NE(error_of(encode(with(Proximity{"robot1", "robot1", 1}))).find("twice"), std::string::npos);
+  Moved twice = sample_moved();
+  twice.moves.pieces[1].id = 0;
+  EXPECT_NE(error_of(encode(with(twice))).find("submap 0 is listed twice"), std::string::npos);
+  Moved inf_tie = sample_moved();
+  inf_tie.moves.ties[0].now.theta = std::numeric_limits<double>::infinity();
+  EXPECT_NE(error_of(encode(with(inf_tie))).find("encounter pose now is not finite"), std::string::npos);
+  WireLimits few;
+  few.max_pieces = 1;
+  EXPECT_NE(error_of(encode(with(sample_moved())), few).find("submap poses: 2 entries, at most 1"), std::string::npos);
   Message bad_sender = with(Decline{1, "x"});
   bad_sender.header.sender = "a b";
   EXPECT_NE(error_of(encode(bad_sender)).find("sender"), std::string::npos);

@@ -89,6 +89,34 @@ TEST(ForeignMaps, AnEncounterTurnedByOneDegreeIsStraightenedByClosuresIntoTheOth
   EXPECT_LT(o.b_error, 0.5 * o.b_error_met);
 }
 
+// B's later loop closures moved its scan where the robots met: A's tie
+// follows it, so the frame moves by as much, seen from that scan.
+TEST(ForeignMaps, AnEncounterFollowsTheOtherRobotsScanWhenItsClosuresMoveIt) {
+  const Robots r;
+  Slam a(with_loop_closure());
+  constexpr std::size_t meet = 60;
+  constexpr std::uint64_t kEncounter = 5;
+  const Pose2 frame(4.0, -2.0, 0.7), then(3.0, 1.0, 0.2), now(3.2, 0.9, 0.25);  // B's scan, in B's frame
+  for (std::size_t i = 0; i < r.a.log.scans.size(); ++i) {
+    const SlamStep step = a.process(r.a.log.scans[i]);
+    if (i != meet) continue;
+    a.set_foreign_map(kFrame, frame, {});
+    a.add_encounter(kFrame, i, step.pose, frame, kEncounter);
+    EXPECT_FALSE(a.move_encounter(kFrame, kEncounter + 1, then, now));  // not an encounter of ours
+    EXPECT_FALSE(a.move_encounter(kFrame + 1, kEncounter, then, now));
+  }
+  a.finish();
+  const Pose2 before = *a.foreign_frame(kFrame);
+  EXPECT_TRUE(a.move_encounter(kFrame, kEncounter, then, now));
+  EXPECT_FALSE(a.move_encounter(kFrame, kEncounter, then, now));  // once is enough
+  a.finish();
+  const Pose2 after = *a.foreign_frame(kFrame), want = before * then * now.inverse();
+  EXPECT_NEAR(after.x, want.x, 1e-6);
+  EXPECT_NEAR(after.y, want.y, 1e-6);
+  EXPECT_NEAR(normalize_angle(after.theta - want.theta), 0.0, 1e-6);
+  EXPECT_GT(std::hypot(after.x - before.x, after.y - before.y), 0.1);
+}
+
 // A piece whose only evidence is cell (3, 4).
 std::shared_ptr<const FrozenMap> one_cell_piece(const MapConfig& config) {
   MultiResMap map(config);

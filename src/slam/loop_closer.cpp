@@ -119,12 +119,27 @@ void LoopCloser::set_foreign_map(int frame, const Pose2& frame_pose, const std::
   new_pieces_.insert(new_pieces_.end(), added.begin(), added.end());
 }
 
-void LoopCloser::add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose) {
+void LoopCloser::add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose,
+                               std::uint64_t encounter) {
   const ScanRecord& s = scans_.at(index);
   if (s.node < 0) return;  // before the first node: nothing to tie it to
   const Pose2 node_pose = scan_pose * s.relative.inverse();
   constraints_.push_back(foreign_.encounter(frame, s.node, node_pose, frame_pose));
+  if (encounter != 0) ties_[{frame, encounter}] = {constraints_.size() - 1, constraints_.back().relative};
   new_constraints_ = true;
+}
+
+bool LoopCloser::move_encounter(int frame, std::uint64_t encounter, const Pose2& then, const Pose2& now) {
+  const auto it = ties_.find({frame, encounter});
+  if (it == ties_.end()) return false;
+  // The tie places our node in that robot's frame through its scan: where
+  // the scan moves, the node goes with it.
+  Pose2& relative = constraints_[it->second.constraint].relative;
+  const Pose2 moved = now * then.inverse() * it->second.measured;
+  if (moved.x == relative.x && moved.y == relative.y && moved.theta == relative.theta) return false;
+  relative = moved;
+  new_constraints_ = true;
+  return true;
 }
 
 std::optional<Pose2> LoopCloser::frame_pose(int frame) const {
@@ -174,8 +189,13 @@ Pose2 LoopCloser::submap_cells_pose(int submap) const {
 std::vector<Pose2> LoopCloser::trajectory() const {
   std::vector<Pose2> out;
   out.reserve(scans_.size());
-  for (const ScanRecord& s : scans_) out.push_back(s.node >= 0 ? node_global(s.node) * s.relative : s.relative);
+  for (std::size_t i = 0; i < scans_.size(); ++i) out.push_back(scan_pose(i));
   return out;
+}
+
+Pose2 LoopCloser::scan_pose(std::size_t index) const {
+  const ScanRecord& s = scans_.at(index);
+  return s.node >= 0 ? node_global(s.node) * s.relative : s.relative;
 }
 
 std::vector<Pose2> LoopCloser::local_trajectory() const {

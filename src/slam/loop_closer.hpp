@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -89,7 +90,14 @@ class LoopCloser {
   void set_foreign_map(int frame, const Pose2& frame_pose, const std::vector<ForeignPiece>& pieces);
   // An encounter with that robot: at our scan `index` (process() order,
   // global pose `scan_pose` then) its frame was at `frame_pose` (global, then).
-  void add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose);
+  // `encounter` names it for move_encounter (0: it never moves).
+  void add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose,
+                     std::uint64_t encounter = 0);
+  // That robot's own loop closures moved its scan of encounter `encounter`
+  // from `then` (where it stood when the robots met, in its frame) to `now`:
+  // the tie follows, from the next round on. Repeating it changes nothing
+  // more. Returns whether the tie moved (false for an encounter not tied here).
+  bool move_encounter(int frame, std::uint64_t encounter, const Pose2& then, const Pose2& now);
   // Where that robot's frame lies in ours now; nullopt if unknown.
   std::optional<Pose2> frame_pose(int frame) const;
   const ForeignMaps& foreign() const { return foreign_; }
@@ -98,6 +106,7 @@ class LoopCloser {
   Pose2 to_global(const Pose2& local) const { return applied_.global_from_local * local; }
   // Every scan's best global pose, in process() order.
   std::vector<Pose2> trajectory() const;
+  Pose2 scan_pose(std::size_t index) const;  // one of them
   // Every scan's local pose (local SLAM's own estimate), in process() order.
   std::vector<Pose2> local_trajectory() const;
   // Where a submap's cells lie globally: global_anchor ⊕ anchor⁻¹.
@@ -156,6 +165,11 @@ class LoopCloser {
   std::vector<std::size_t> new_pieces_;      // foreign pieces not yet searched from earlier nodes
   std::vector<RoundInput::Backlog> backlog_; // those searches, waiting for a round
   bool new_constraints_ = false;             // encounters since the last round
+  struct Tie {
+    std::size_t constraint;  // in constraints_
+    Pose2 measured;          // its relative as the encounter measured it
+  };
+  std::map<std::pair<int, std::uint64_t>, Tie> ties_;  // (frame, encounter)
   double travel_ = 0.0;
   std::optional<Pose2> last_scan_pose_;
   double last_search_travel_ = -1e9;

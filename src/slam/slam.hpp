@@ -160,9 +160,19 @@ class Slam {
   }
   // An encounter: at our scan `index` (process() order; its global pose then
   // `scan_pose`) the other robot's frame was seen at `frame_pose`.
-  void add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose) {
-    closer_.add_encounter(frame, index, scan_pose, frame_pose);
+  // `encounter` names it, for when the other robot says its scan moved
+  // (LoopCloser::move_encounter).
+  void add_encounter(int frame, std::size_t index, const Pose2& scan_pose, const Pose2& frame_pose,
+                     std::uint64_t encounter = 0) {
+    closer_.add_encounter(frame, index, scan_pose, frame_pose, encounter);
   }
+  bool move_encounter(int frame, std::uint64_t encounter, const Pose2& then, const Pose2& now) {
+    return closer_.move_encounter(frame, encounter, then, now);
+  }
+  // Scan `index`'s best global pose now (process() order), and a number that
+  // grows whenever loop closing moves the trajectory and submaps.
+  Pose2 scan_pose(std::size_t index) const { return closer_.scan_pose(index); }
+  std::uint64_t graph_revision() const { return closer_.version(); }
   // Where the other robot's frame lies in ours now (as optimized); nullopt if unknown.
   std::optional<Pose2> foreign_frame(int frame) const { return closer_.frame_pose(frame); }
   const LoopCloser& loop_closer() const { return closer_; }

@@ -64,4 +64,21 @@ void MapKnowledge::place(const std::string& origin, const Pose2& origin_in_holde
   if (auto it = layers_.find(origin); it != layers_.end()) it->second.origin_in_holder = origin_in_holder;
 }
 
+bool MapKnowledge::move_pieces(const std::string& origin, const std::vector<PiecePose>& poses) {
+  const auto it = layers_.find(origin);
+  if (it == layers_.end() || poses.empty()) return false;
+  std::map<std::int32_t, Pose2> by_id;
+  for (const PiecePose& p : poses) by_id[p.id] = p.pose;
+  bool moved = false;
+  for (MapPiece& piece : it->second.pieces) {
+    const auto p = by_id.find(piece.id);
+    if (p == by_id.end() || (p->second.x == piece.pose.x && p->second.y == piece.pose.y &&
+                             p->second.theta == piece.pose.theta))
+      continue;
+    piece.pose = p->second;
+    moved = true;
+  }
+  return moved;
+}
+
 }  // namespace dsswarm

@@ -45,6 +45,9 @@ class MapKnowledge {
   // Moves `origin`'s map frame to `origin_in_holder` (as this robot's pose
   // graph placed it); nothing if no layer of it is held.
   void place(const std::string& origin, const Pose2& origin_in_holder);
+  // Moves the pieces of `origin`'s layer that it holds to where `origin`
+  // says they lie now (MapMoves). Returns whether any moved.
+  bool move_pieces(const std::string& origin, const std::vector<PiecePose>& poses);
 
  private:
   std::string self_;

@@ -30,6 +30,26 @@ void expect_same_layers(const MapKnowledge& x, const MapKnowledge& y) {
   }
 }
 
+TEST(MapKnowledge, PiecesHeldMoveWhereTheirRobotSaysAndNothingElseDoes) {
+  MapKnowledge a("a");
+  auto piece = std::make_shared<const FrozenMap>(*map_with_cell({2, 2}, 0.5f));
+  MapSnapshot from_b = own_snapshot("b", 7, {1, 1});
+  from_b.layers[0].pieces = {{0, Pose2(), piece}, {1, Pose2(3.0, 0.0, 0.0), piece}};
+  a.absorb(from_b, {1.0, 2.0, 0.5});
+  EXPECT_FALSE(a.move_pieces("c", {{1, Pose2(3.5, 0.0, 0.0)}}));  // no layer of c
+  EXPECT_FALSE(a.move_pieces("b", {{1, Pose2(3.0, 0.0, 0.0)}}));  // where it was
+  EXPECT_FALSE(a.move_pieces("b", {{9, Pose2(1.0, 0.0, 0.0)}}));  // a piece not held
+  EXPECT_TRUE(a.move_pieces("b", {{1, Pose2(3.5, 0.2, 0.1)}, {9, Pose2(1.0, 0.0, 0.0)}}));
+  const MapLayer& b = *a.find("b");
+  ASSERT_EQ(b.pieces.size(), 2u);
+  EXPECT_EQ(b.pieces[0].pose.x, 0.0);
+  EXPECT_EQ(b.pieces[1].pose.x, 3.5);
+  EXPECT_EQ(b.pieces[1].pose.theta, 0.1);
+  EXPECT_EQ(b.pieces[1].map, piece);  // the evidence stays
+  EXPECT_EQ(b.version, 7u);
+  EXPECT_EQ(b.origin_in_holder.x, 1.0);  // its frame is placed by the holder, not moved
+}
+
 TEST(MapKnowledge, SameSnapshotTwiceEqualsOnce) {
   MapKnowledge a("a");
   const MapSnapshot from_b = own_snapshot("b", 7, {1, 1});

@@ -42,6 +42,32 @@ struct LayerVersion {
   bool operator==(const LayerVersion&) const = default;
 };
 
+// Where a robot's map lies now, for a robot that holds a copy of it: its
+// loop closures since the copy was taken moved its submaps (pieces) and the
+// scans where it met the holder. A few bytes per submap, against the
+// megabytes of the map itself; without it the holder's copy and its
+// estimate of where the robot's frame lies keep the old shape.
+struct PiecePose {
+  std::int32_t id = 0;  // MapPiece::id
+  Pose2 pose;           // where its cells lie in the robot's frame now
+};
+struct TieMove {
+  std::uint64_t encounter = 0;  // the encounter's id
+  Pose2 then;                   // the robot's scan there, as it offered it
+  Pose2 now;                    // the same scan now
+};
+// The robot's own side of an encounter, as it tells a follower where it went.
+struct TieScan {
+  std::uint64_t encounter = 0;
+  std::size_t scan_index = 0;  // its scan there (process() order)
+  Pose2 offered;               // that scan's pose as it offered it
+};
+struct MapMoves {
+  std::uint64_t revision = 0;  // the robot's graph revision: a higher one supersedes
+  std::vector<PiecePose> pieces;
+  std::vector<TieMove> ties;   // its encounters with the holder
+};
+
 // What a robot sends at an encounter (and what a .dsmap file holds): layers[0]
 // is the sender's own map (origin == sender, identity pose, hops 0), then what
 // it knows of others, placed in the sender's frame.

@@ -53,10 +53,11 @@ SlamStep SwarmAgent::process(const LaserScan& scan) {
   return step;
 }
 
-void SwarmAgent::finish() {
+void SwarmAgent::finish(bool compose) {
   slam_.finish();
   if (!loop_closing() || knowledge_.size() == 0) return;
   sync_frames();
+  if (!compose) return;
   slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
 }
 
@@ -74,9 +75,30 @@ void SwarmAgent::sync_frames() {
     if (const std::optional<Pose2> p = slam_.foreign_frame(id)) knowledge_.place(origin, *p);
 }
 
-void SwarmAgent::tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self) {
+void SwarmAgent::tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self,
+                     std::uint64_t encounter) {
   if (!loop_closing()) return;
-  slam_.add_encounter(frame_id(peer), scan_index, scan_pose, peer_in_self);
+  slam_.add_encounter(frame_id(peer), scan_index, scan_pose, peer_in_self, encounter);
+}
+
+MapMoves SwarmAgent::moves(const std::vector<TieScan>& ties) const {
+  MapMoves m;
+  if (!loop_closing()) return m;
+  m.revision = graph_revision();
+  for (const MapPiece& p : slam_.finished_pieces()) m.pieces.push_back({p.id, p.pose});
+  for (const TieScan& t : ties)
+    if (t.scan_index < slam_.scans_processed())
+      m.ties.push_back({t.encounter, t.offered, slam_.scan_pose(t.scan_index)});
+  return m;
+}
+
+bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
+  if (!loop_closing()) return false;
+  bool moved = knowledge_.move_pieces(origin, moves.pieces);
+  if (moved) register_layers();
+  if (const auto it = frame_ids_.find(origin); it != frame_ids_.end())
+    for (const TieMove& t : moves.ties) moved = slam_.move_encounter(it->second, t.encounter, t.then, t.now) || moved;
+  return moved;
 }
 
 EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {

@@ -37,7 +37,9 @@ class SwarmAgent {
   // own map then reflect every scan (Slam::finish). Processing may go on after.
   // With loop closure on, the merged map is then composed again at the
   // other robots' frames as the last round placed them.
-  void finish();
+  // `compose` false: the merged map is left for a later finish() (one that
+  // follows the others' last word on their maps).
+  void finish(bool compose = true);
 
   // What this robot puts on the table at an encounter.
   // Working map, current scan, pose and surroundings (as `config` asks).
@@ -52,7 +54,21 @@ class SwarmAgent {
   // with loop closure on, a constraint between that scan and the peer's
   // frame in this robot's pose graph (slam/foreign_maps.hpp). From then on
   // the graph places that frame, and knowledge() and the merged map follow.
-  void tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self);
+  // `encounter` names it, for follow().
+  void tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self,
+           std::uint64_t encounter = 0);
+
+  // Where this robot's map lies now, for a peer holding a copy (MapMoves):
+  // its finished submaps, and its scans at the encounters `ties`. Empty with
+  // loop closure off.
+  MapMoves moves(const std::vector<TieScan>& ties) const;
+  // Grows whenever loop closing moves this robot's map (moves() changes).
+  std::uint64_t graph_revision() const { return slam_.graph_revision(); }
+  // `origin` says its map moved: its pieces held here follow, and so do the
+  // ties of our encounters with it, from the next loop-closing round on.
+  // The merged map shows it from the next composition on (a merge, finish()),
+  // as it shows this robot's own closures. Returns whether anything moved.
+  bool follow(const std::string& origin, const MapMoves& moves);
   bool loop_closing() const { return slam_.config().loop_closure.enabled; }
 
   // Takes in another robot's snapshot, whose sender's frame has pose

@@ -112,5 +112,65 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
   EXPECT_EQ(largest_difference(want.finest(), a.slam().map().finest()), 0.0);
 }
 
+// After a merge, the robot whose map was merged goes on and closes its loop,
+// which moves its submaps and the scan where the two met: told so
+// (MapMoves), the holder's copy and the tie follow.
+TEST(SwarmAgent, AMapThatLoopClosingMovedAfterTheMergeIsFollowed) {
+  // b drives 1.3 laps of a corridor ring on odometry that turns too much,
+  // and closes the loop long after it met a.
+  LoopWorldConfig world;
+  world.laps = 1.3;
+  const LoopWorld w = make_loop_world(world);
+  LidarConfig lidar;
+  lidar.range_max = 8.0;
+  lidar.noise_std = 0.02;
+  RobotConfig robot;
+  robot.odom_drift = 0.05;
+  const SimulatedRun rb = simulate_run(w.world, w.tour, w.start, robot, lidar, 1), ra = test::lap(0, 1);
+  SlamConfig tie_only = with_loop_closure();
+  tie_only.loop_closure.foreign_max_pieces = 0;  // the encounter alone places b's frame
+  SwarmAgent a("a", tie_only), b("b", with_loop_closure());
+  constexpr std::uint64_t kEncounter = 9;
+  const std::size_t a_meet = 60, b_meet = rb.log.scans.size() / 3;
+  for (std::size_t i = 0; i <= b_meet; ++i) b.process(rb.log.scans[i]);
+  for (std::size_t i = 0; i <= a_meet; ++i) a.process(ra.log.scans[i]);
+  const Pose2 b_offered = b.slam().pose(), b_in_a(1.0, 2.0, 0.3);
+  a.tie("b", a_meet, a.slam().pose(), b_in_a, kEncounter);
+  ASSERT_TRUE(a.merge(b.snapshot(), b_in_a));
+  ASSERT_FALSE(a.knowledge().find("b")->pieces.empty());
+  for (std::size_t i = b_meet + 1; i < rb.log.scans.size(); ++i) b.process(rb.log.scans[i]);
+  b.finish();  // closes its loop
+
+  const MapMoves moves = b.moves({{kEncounter, b_meet, b_offered}});
+  EXPECT_EQ(moves.revision, b.graph_revision());
+  ASSERT_EQ(moves.ties.size(), 1u);
+  const Pose2 b_now = moves.ties[0].now;
+  ASSERT_GT(std::hypot(b_now.x - b_offered.x, b_now.y - b_offered.y), 0.05);  // its scan there moved
+  EXPECT_FALSE(a.follow("c", moves));  // no map of c held
+  a.finish();
+  const Pose2 before = a.knowledge().find("b")->origin_in_holder;
+  ASSERT_TRUE(a.follow("b", moves));
+  EXPECT_FALSE(a.follow("b", moves));  // nothing more to move
+  // a holds b's pieces where b has them now, and its graph places b's frame
+  // where the encounter, seen from b's scan as it lies now, puts it.
+  std::size_t matched = 0;
+  for (const MapPiece& p : a.knowledge().find("b")->pieces)
+    for (const PiecePose& q : moves.pieces)
+      if (q.id == p.id) {
+        EXPECT_EQ(p.pose.x, q.pose.x) << "piece " << p.id;
+        ++matched;
+      }
+  EXPECT_EQ(matched, a.knowledge().find("b")->pieces.size());
+  a.finish();
+  const Pose2 after = a.knowledge().find("b")->origin_in_holder, want = before * b_offered * b_now.inverse();
+  EXPECT_NEAR(after.x, want.x, 1e-4);
+  EXPECT_NEAR(after.y, want.y, 1e-4);
+  EXPECT_NEAR(normalize_angle(after.theta - want.theta), 0.0, 1e-5);
+
+  SwarmAgent plain("p", SlamConfig{});  // without loop closure nothing moves
+  EXPECT_TRUE(plain.moves({{kEncounter, 0, Pose2()}}).pieces.empty());
+  EXPECT_FALSE(plain.follow("b", moves));
+}
+
 }  // namespace
 }  // namespace dsswarm

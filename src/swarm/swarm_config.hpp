@@ -58,6 +58,11 @@ struct SwarmConfig {
   // would go beyond is abandoned (many peers at once must not exhaust a
   // small robot's memory). A 100 m × 100 m map travels in ~3 MB.
   std::size_t max_transfer_bytes = std::size_t{256} << 20;
+  // With loop closure on, peers that merged a robot's map hear where its
+  // loop closures moved it (followers.hpp) at most this often, about each
+  // of their last `max_followed_encounters` encounters with it.
+  double moves_interval = 5.0;  // s
+  std::size_t max_followed_encounters = 32;
 
   void validate() const;  // throws ConfigError naming the field
 };
