@@ -263,6 +263,8 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"confirm", DSS_SWARM_FIELD(bool, confirm)},
         {"confirm_xy", DSS_SWARM_FIELD(double, confirm_xy)},
         {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)},
+        {"repeat_xy", DSS_SWARM_FIELD(double, repeat_xy)},
+        {"repeat_theta", DSS_SWARM_FIELD(double, repeat_theta)},
         {"exchange_timeout", DSS_SWARM_FIELD(double, exchange_timeout)},
         {"offer_timeout", DSS_SWARM_FIELD(double, offer_timeout)},
         {"chunk_bytes", DSS_SWARM_FIELD(std::size_t, chunk_bytes)},

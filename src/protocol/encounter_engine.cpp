@@ -8,14 +8,10 @@
 
 #include "common/hash.hpp"
 #include "common/rng.hpp"
-#include "io/maps/dsmap.hpp"
+#include "protocol/encounter_exchange.hpp"
 
 namespace dsswarm::protocol {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 EncounterView view_of(const Offer& offer) {
   EncounterView v;
@@ -26,33 +22,7 @@ EncounterView view_of(const Offer& offer) {
   return v;
 }
 
-// Whether a holder of `held` would take `layer` (as map_knowledge's supersedes,
-// by version and hop count; the pose tie-break is left to the receiver).
-bool peer_lacks(const MapLayer& layer, const std::vector<LayerVersion>& held) {
-  for (const LayerVersion& h : held)
-    if (h.origin == layer.origin)
-      return layer.version > h.version || (layer.version == h.version && layer.hops + 1 < h.hops);
-  return true;
-}
-
 }  // namespace
-
-struct EncounterEngine::Exchange {
-  std::string peer;
-  std::uint64_t id = 0;
-  bool self_is_a = true;
-  CapturedView mine;
-  std::optional<Offer> offer;  // the peer's
-  std::optional<PeerPlacement> my_placement;
-  std::optional<Placement> their_placement;
-  std::optional<Pose2> my_known;  // confirmation candidates as sent
-  std::vector<Pose2> my_pending;
-  bool decided = false;
-  bool accepted = false;
-  double progress = 0.0;  // the caller's clock when it opened, then when the peer's offer came (time-outs count from here)
-  TransferAssembler incoming;
-  EncounterOutcome outcome;
-};
 
 EncounterEngine::EncounterEngine(std::string self, const SwarmConfig& config, AgentPort& port,
                                  std::uint64_t incarnation)
@@ -60,7 +30,8 @@ EncounterEngine::EncounterEngine(std::string self, const SwarmConfig& config, Ag
       config_(config),
       port_(port),
       stamper_(self_, incarnation),
-      followers_(config.moves_interval, config.max_followed_encounters) {
+      followers_(config.moves_interval, config.max_followed_encounters),
+      repeats_(config.repeat_xy, config.repeat_theta) {
   config_.validate();
 }
 
@@ -82,30 +53,6 @@ void EncounterEngine::send(Exchange* x, const std::string& recipient, Body body)
   Outgoing out{recipient, encode(stamper_.stamp(recipient, std::move(body)))};
   if (x) x->outcome.bytes_sent += out.bytes.size();
   outbox_.push_back(std::move(out));
-}
-
-void EncounterEngine::decline(const std::string& peer, std::uint64_t encounter, EncounterOutcome::Decline why,
-                              const std::string& reason, double now) {
-  send(nullptr, peer, Decline{encounter, reason});
-  EncounterOutcome o;
-  o.encounter = encounter;
-  o.self = self_;
-  o.peer = peer;
-  o.self_is_a = self_ < peer;
-  o.end = EncounterOutcome::End::declined;
-  o.decline = why;
-  o.reason = reason;
-  o.started = o.ended = now;
-  outcomes_.push_back(std::move(o));
-  remember_ended({peer, encounter});
-}
-
-void EncounterEngine::remember_ended(const Key& key) {
-  if (!ended_.insert(key).second) return;
-  ended_order_.push_back(key);
-  if (ended_order_.size() <= config_.remembered_encounters) return;
-  ended_.erase(ended_order_.front());
-  ended_order_.pop_front();
 }
 
 void EncounterEngine::start(const std::string& peer, std::uint64_t encounter, double now) {
@@ -181,6 +128,7 @@ EncounterEngine::Exchange* EncounterEngine::open(const std::string& peer, std::u
   offer.surroundings = x->mine.view.surroundings;
   offer.wide_surroundings = x->mine.view.wide_surroundings;
   offer.inventory = port_.inventory();
+  x->my_inventory = offer.inventory;
   Exchange* raw = x.get();
   open_.emplace(Key{peer, encounter}, std::move(x));
   send(raw, peer, std::move(offer));
@@ -199,25 +147,6 @@ void EncounterEngine::resume_waiting(double now) {
     Exchange* x = open(key.first, key.second, w.since, now);
     if (x && w.offer) take_offer(*x, *w.offer, w.offer_bytes, now);
   }
-}
-
-void EncounterEngine::end_waiting(const Key& key, EncounterOutcome::End end, EncounterOutcome::Decline why,
-                                  std::string reason, double now) {
-  auto it = waiting_.find(key);
-  if (it == waiting_.end()) return;
-  EncounterOutcome o;
-  o.encounter = key.second;
-  o.self = self_;
-  o.peer = key.first;
-  o.self_is_a = self_ < key.first;
-  o.end = end;
-  o.decline = why;
-  o.reason = std::move(reason);
-  o.started = it->second.since;
-  o.ended = now;
-  outcomes_.push_back(std::move(o));
-  remember_ended(key);
-  waiting_.erase(it);
 }
 
 void EncounterEngine::receive(const Message& message, std::size_t wire_bytes, double now) {
@@ -260,6 +189,15 @@ void EncounterEngine::take_offer(Exchange& x, const Offer& offer, std::size_t by
   x.outcome.bytes_received += bytes;
   x.outcome.peer_pose = offer.pose;
   x.outcome.peer_stamp = offer.stamp;
+  const Offered mine{x.mine.view.pose, x.my_inventory}, theirs{offer.pose, offer.inventory};
+  if (const auto last = repeats_.repeats(x.peer, x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine)) {
+    const std::string reason =
+        fmt::format("nothing new since encounter {}: both robots stand where they stood, on the same maps", *last);
+    send(&x, x.peer, Decline{x.id, reason});
+    x.outcome.decline = EncounterOutcome::Decline::unchanged;
+    finish({x.peer, x.id}, EncounterOutcome::End::declined, reason, now);
+    return;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   // A places B with the pair's seed, B places A with the next one.
   x.my_placement = locate_peer(x.mine.view, view_of(offer), config_.encounter, seed_for(x) + (x.self_is_a ? 0 : 1));
@@ -291,6 +229,8 @@ void EncounterEngine::decide(Exchange& x, double now) {
   o.estimate = decide_encounter(a_pose, b_pose, x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine,
                                 config_.encounter);
   o.decided = x.decided = true;
+  const Offered offered{x.mine.view.pose, x.my_inventory}, received{x.offer->pose, x.offer->inventory};
+  repeats_.decided(x.peer, x.id, x.self_is_a ? offered : received, x.self_is_a ? received : offered);
   x.accepted = o.estimate.accepted;
   o.reason = o.estimate.reason;
   if (x.accepted && config_.confirm) confirm(x);
@@ -324,143 +264,6 @@ void EncounterEngine::confirm(Exchange& x) {
   if (pending.size() > config_.max_pending_confirmations) pending.erase(pending.begin());
   x.accepted = false;
   o.reason = "unconfirmed: the placements verify; the maps merge once a second encounter agrees";
-}
-
-void EncounterEngine::send_transfer(Exchange& x) {
-  MapSnapshot all = port_.snapshot(x.mine);
-  MapSnapshot lacking;
-  lacking.sender = self_;
-  for (MapLayer& l : all.layers)
-    if (l.origin != x.peer && peer_lacks(l, x.offer->inventory)) lacking.layers.push_back(std::move(l));
-  const std::vector<std::uint8_t> bytes = lacking.layers.empty() ? std::vector<std::uint8_t>{} : encode_dsmap(lacking);
-  x.outcome.snapshot_bytes_sent = bytes.size();
-  for (Chunk& c : split_transfer(x.id, bytes, config_.chunk_bytes)) send(&x, x.peer, std::move(c));
-}
-
-void EncounterEngine::on_chunk(const std::string& peer, const Chunk& chunk, std::size_t bytes, double now) {
-  auto it = open_.find({peer, chunk.encounter});
-  if (it == open_.end()) return;  // abandoned, or never ours
-  Exchange& x = *it->second;
-  x.outcome.bytes_received += bytes;
-  if (buffered_bytes() + chunk.data.size() > config_.max_transfer_bytes ||
-      chunk.total_bytes > config_.max_transfer_bytes) {
-    finish(it->first, EncounterOutcome::End::abandoned,
-           fmt::format("snapshot transfers would hold more than {} MiB", config_.max_transfer_bytes >> 20), now);
-    return;
-  }
-  try {
-    if (!x.incoming.add(chunk)) return;
-  } catch (const ProtocolError& e) {
-    finish(it->first, EncounterOutcome::End::abandoned, std::string("bad snapshot transfer: ") + e.what(), now);
-    return;
-  }
-  if (x.decided && x.accepted) absorb_transfer(x, now);
-}
-
-void EncounterEngine::absorb_transfer(Exchange& x, double now) {
-  const Key key{x.peer, x.id};
-  MapSnapshot snapshot;
-  try {
-    const std::vector<std::uint8_t> bytes = x.incoming.take();
-    x.outcome.snapshot_bytes_received = bytes.size();
-    if (!bytes.empty()) snapshot = decode_dsmap(bytes, "snapshot from " + x.peer);
-  } catch (const InputError& e) {
-    finish(key, EncounterOutcome::End::abandoned, std::string("bad snapshot: ") + e.what(), now);
-    return;
-  }
-  if (!snapshot.layers.empty() && snapshot.sender != x.peer) {
-    finish(key, EncounterOutcome::End::abandoned, "snapshot from " + x.peer + " names sender " + snapshot.sender, now);
-    return;
-  }
-  snapshot.sender = x.peer;  // also when it sent nothing
-  const Pose2 t = x.outcome.estimate.b_frame_in_a;
-  const auto t0 = std::chrono::steady_clock::now();
-  x.outcome.layers_received = snapshot.layers.size();
-  port_.merge(std::move(snapshot), x.self_is_a ? t : t.inverse(), x.mine, x.id);
-  followers_.add(x.peer, {x.id, x.mine.view.scan_index, x.mine.view.pose});
-  x.outcome.merge_ms = ms_since(t0);
-  peers_[x.peer].last_merge = x.outcome.started;  // from the event, as robots that finish at different moments agree
-  finish(key, EncounterOutcome::End::accepted, "", now);
-}
-
-void EncounterEngine::on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now) {
-  end_waiting({peer, decline.encounter}, EncounterOutcome::End::declined, EncounterOutcome::Decline::by_peer,
-              peer + " declined: " + decline.reason, now);
-  auto it = open_.find({peer, decline.encounter});
-  if (it == open_.end()) return;
-  it->second->outcome.bytes_received += bytes;
-  it->second->outcome.decline = EncounterOutcome::Decline::by_peer;
-  finish(it->first, EncounterOutcome::End::declined, peer + " declined: " + decline.reason, now);
-}
-
-void EncounterEngine::finish(const Key& key, EncounterOutcome::End end, std::string reason, double now) {
-  auto it = open_.find(key);
-  if (it == open_.end()) return;
-  EncounterOutcome o = std::move(it->second->outcome);
-  o.end = end;
-  o.ended = now;
-  if (end != EncounterOutcome::End::accepted) o.reason = std::move(reason);
-  outcomes_.push_back(std::move(o));
-  remember_ended(key);  // before the erase: `key` may be the map's own
-  open_.erase(it);
-}
-
-void EncounterEngine::drop_peer(const std::string& peer, const std::string& why, double now) {
-  std::vector<Key> keys;
-  for (const auto& [key, w] : waiting_)
-    if (key.first == peer) keys.push_back(key);
-  for (const Key& k : keys) end_waiting(k, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, why, now);
-  keys.clear();
-  for (const auto& [key, x] : open_)
-    if (key.first == peer) keys.push_back(key);
-  for (const Key& k : keys) finish(k, EncounterOutcome::End::abandoned, why, now);
-  resume_waiting(now);
-}
-
-void EncounterEngine::abandon_all(const std::string& why, double now) {
-  while (!waiting_.empty())
-    end_waiting(waiting_.begin()->first, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, why, now);
-  while (!open_.empty()) finish(open_.begin()->first, EncounterOutcome::End::abandoned, why, now);
-}
-
-void EncounterEngine::tick(double now) {
-  struct Late {
-    Key key;
-    const char* stage;
-    double limit;
-  };
-  std::vector<Late> late;
-  for (const auto& [key, x] : open_) {
-    const double limit = x->offer ? config_.exchange_timeout : config_.offer_timeout;
-    if (now - x->progress > limit)
-      late.push_back({key, !x->offer ? "offer" : !x->their_placement ? "placement" : "snapshot", limit});
-  }
-  for (const Late& l : late)
-    finish(l.key, EncounterOutcome::End::abandoned,
-           fmt::format("timed out after {:.0f} s waiting for {}'s {}", l.limit, l.key.first, l.stage), now);
-  // One that waited that long for this robot's earlier encounters: the peer has given up on it.
-  std::vector<Key> stale;
-  for (const auto& [key, w] : waiting_)
-    if (now - w.since > config_.offer_timeout) stale.push_back(key);
-  for (const Key& key : stale) {
-    const std::string reason =
-        fmt::format("waited {:.0f} s for {}'s earlier encounters to end", config_.offer_timeout, self_);
-    send(nullptr, key.first, Decline{key.second, reason});
-    end_waiting(key, EncounterOutcome::End::abandoned, EncounterOutcome::Decline::none, reason, now);
-  }
-  resume_waiting(now);
-  announce_moves(now);
-}
-
-void EncounterEngine::announce_moves(double now, bool force) {
-  const std::vector<std::string> due = followers_.due(port_.graph_revision(), now, force);
-  if (due.empty()) return;
-  const std::uint64_t revision = port_.graph_revision();
-  for (const std::string& peer : due) {
-    MapMoves moves = port_.map_moves(followers_.ties(peer));
-    if (!moves.pieces.empty() || !moves.ties.empty()) send(nullptr, peer, Moved{std::move(moves)});
-    followers_.told(peer, revision, now);
-  }
 }
 
 }  // namespace dsswarm::protocol

@@ -24,6 +24,7 @@
 #include "protocol/followers.hpp"
 #include "protocol/gate.hpp"
 #include "protocol/messages.hpp"
+#include "protocol/repeats.hpp"
 #include "protocol/transfer.hpp"
 #include "swarm/encounter.hpp"
 #include "swarm/map_snapshot.hpp"
@@ -74,7 +75,7 @@ class AgentPort {
 struct EncounterOutcome {
   enum class End { accepted, rejected, declined, abandoned };
   // Why this robot declined to take part (declined by itself; a peer's decline is `by_peer`).
-  enum class Decline { none, merging_off, merged_recently, busy, no_scan, by_peer };
+  enum class Decline { none, merging_off, merged_recently, busy, no_scan, unchanged, by_peer };
   std::uint64_t encounter = 0;
   std::string self, peer;
   bool self_is_a = true;  // A: the robot whose name sorts first
@@ -174,6 +175,7 @@ class EncounterEngine {
   std::vector<Outgoing> outbox_;
   std::vector<EncounterOutcome> outcomes_;
   Followers followers_;
+  RepeatGuard repeats_;
 };
 
 }  // namespace dsswarm::protocol

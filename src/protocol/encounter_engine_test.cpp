@@ -33,9 +33,9 @@ class FakeRobot : public AgentPort {
     captured.push_back({encounter, merges});
     return CapturedView{view, 100.0, nullptr, nullptr, 0, nullptr};
   }
-  MapSnapshot snapshot(const CapturedView&) override { return knowledge.snapshot(own, 11); }
+  MapSnapshot snapshot(const CapturedView&) override { return knowledge.snapshot(own, version); }
   std::vector<LayerVersion> inventory() const override {
-    std::vector<LayerVersion> out{{knowledge.self(), 11, 0}};
+    std::vector<LayerVersion> out{{knowledge.self(), version, 0}};
     for (const MapLayer& l : knowledge.layers()) out.push_back({l.origin, l.version, l.hops});
     return out;
   }
@@ -60,6 +60,7 @@ class FakeRobot : public AgentPort {
   void follow(const std::string& peer, const MapMoves& moves) override { followed.emplace_back(peer, moves); }
 
   MapKnowledge knowledge;
+  std::uint64_t version = 11;  // scans in its own map
   std::uint64_t revision = 0;
   std::vector<std::pair<std::string, MapMoves>> followed;
   std::shared_ptr<MultiResMap> own;
@@ -206,17 +207,32 @@ TEST(EncounterEngine, AFirstVerifiedEstimateWaitsForASecondThatAgrees) {
   EXPECT_EQ(first_b[0].end, End::rejected);
   EXPECT_NE(first_a[0].reason.find("unconfirmed: "), std::string::npos);
   EXPECT_EQ(p.a.merges, 0);
+  // The same again, neither robot having moved or mapped: a repeat, not a
+  // second estimate. Both decline it, and nothing is confirmed.
   p.ea.start("b", 2, 1.0);
   p.eb.start("a", 2, 1.0);
   p.pump(1.0);
+  const auto repeat_a = p.ea.take_outcomes(), repeat_b = p.eb.take_outcomes();
+  ASSERT_EQ(repeat_a.size(), 1u);
+  EXPECT_EQ(repeat_a[0].end, End::declined);
+  EXPECT_EQ(repeat_b[0].end, End::declined);
+  EXPECT_EQ(repeat_a[0].decline, EncounterOutcome::Decline::unchanged);
+  EXPECT_NE(repeat_a[0].reason.find("nothing new since encounter 1"), std::string::npos) << repeat_a[0].reason;
+  EXPECT_EQ(p.a.merges, 0);
+  EXPECT_EQ(p.ea.open_encounters() + p.eb.open_encounters(), 0u);
+  p.b.version = 12;  // b went on mapping: a new situation
+  p.ea.start("b", 3, 2.0);
+  p.eb.start("a", 3, 2.0);
+  p.pump(2.0);
   const auto second_a = p.ea.take_outcomes(), second_b = p.eb.take_outcomes();
   ASSERT_EQ(second_a[0].end, End::accepted) << second_a[0].reason;
   ASSERT_EQ(second_b[0].end, End::accepted) << second_b[0].reason;
   EXPECT_EQ(second_a[0].confirmed_by, "earlier encounter");
   EXPECT_EQ(second_b[0].confirmed_by, "earlier encounter");
   // A third, once they know each other: confirmed by the transform they hold.
-  p.ea.start("b", 3, 30.0);
-  p.eb.start("a", 3, 30.0);
+  p.b.version = 13;
+  p.ea.start("b", 4, 30.0);
+  p.eb.start("a", 4, 30.0);
   p.pump(30.0);
   EXPECT_EQ(p.ea.take_outcomes()[0].confirmed_by, "known transform");
 }

@@ -22,6 +22,8 @@ std::string skip_reason(const protocol::EncounterOutcome& x, const protocol::Enc
   if (x.decline == D::merging_off || y.decline == D::merging_off) return "merging is off";
   if (x.decline == D::merged_recently || y.decline == D::merged_recently)
     return fmt::format("{} and {} merged less than {} s before", x.self, y.self, config.remerge_interval);
+  if (x.decline == D::unchanged || y.decline == D::unchanged)
+    return fmt::format("{} and {} had neither moved nor mapped since their last encounter", x.self, y.self);
   return x.decline != D::by_peer ? x.reason : y.reason;
 }
 

@@ -39,6 +39,11 @@ struct SwarmConfig {
   bool confirm = true;
   double confirm_xy = 0.25;      // m
   double confirm_theta = 0.035;  // rad (2°)
+  // An encounter is declined as a repeat when both robots stand within this
+  // of where they stood at the pair's last decided encounter, on the same
+  // maps (protocol/repeats.hpp): parked robots are not placed again and again.
+  double repeat_xy = 0.05;      // m
+  double repeat_theta = 0.0175; // rad (1°)
   // The exchange itself (protocol/): an encounter not finished in this long
   // after both robots joined is abandoned, its partial transfer discarded (a
   // peer vanished). A peer joins (sends its offer) only once its earlier

@@ -1,0 +1,43 @@
+#include "protocol/repeats.hpp"
+
+#include <gtest/gtest.h>
+
+namespace dsswarm::protocol {
+namespace {
+
+const Offered kA{{1.0, 2.0, 0.3}, {{"a", 40, 0}, {"b", 30, 1}}};
+const Offered kB{{-3.0, 0.5, 2.0}, {{"b", 30, 0}}};
+
+TEST(RepeatGuard, TheSameOffersAsTheLastDecidedEncounterRepeatIt) {
+  RepeatGuard guard(0.05, 0.0175);
+  EXPECT_FALSE(guard.repeats("b", kA, kB));  // nothing decided yet
+  guard.decided("b", 7, kA, kB);
+  EXPECT_EQ(guard.repeats("b", kA, kB), 7u);
+  Offered nudged = kA;
+  nudged.pose = kA.pose * Pose2(0.03, 0.0, 0.01);  // standing where it stood
+  EXPECT_EQ(guard.repeats("b", nudged, kB), 7u);
+  EXPECT_FALSE(guard.repeats("c", kA, kB));  // another pair
+}
+
+TEST(RepeatGuard, AMoveOrAnythingNewOnEitherSideIsNoRepeat) {
+  RepeatGuard guard(0.05, 0.0175);
+  guard.decided("b", 7, kA, kB);
+  Offered moved = kB;
+  moved.pose = kB.pose * Pose2(0.2, 0.0, 0.0);
+  EXPECT_FALSE(guard.repeats("b", kA, moved));
+  Offered turned = kA;
+  turned.pose.theta += 0.05;
+  EXPECT_FALSE(guard.repeats("b", turned, kB));
+  Offered mapped = kA;
+  mapped.inventory[0].version = 41;  // a scan went into its map
+  EXPECT_FALSE(guard.repeats("b", mapped, kB));
+  Offered learnt = kB;
+  learnt.inventory.push_back({"c", 12, 1});  // it merged a third robot's map
+  EXPECT_FALSE(guard.repeats("b", kA, learnt));
+  guard.decided("b", 8, kA, moved);  // the latest decided one counts
+  EXPECT_FALSE(guard.repeats("b", kA, kB));
+  EXPECT_EQ(guard.repeats("b", kA, moved), 8u);
+}
+
+}  // namespace
+}  // namespace dsswarm::protocol
