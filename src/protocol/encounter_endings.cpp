@@ -120,9 +120,8 @@ void EncounterEngine::tick(double now) {
 }
 
 void EncounterEngine::announce_moves(double now, bool force) {
-  const std::vector<std::string> due = followers_.due(port_.graph_revision(), now, force);
-  if (due.empty()) return;
   const std::uint64_t revision = port_.graph_revision();
+  const std::vector<std::string> due = followers_.due(revision, now, force);
   for (const std::string& peer : due) {
     MapMoves moves = port_.map_moves(followers_.ties(peer));
     if (!moves.pieces.empty() || !moves.ties.empty()) send(nullptr, peer, Moved{std::move(moves)});
