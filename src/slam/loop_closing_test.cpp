@@ -9,26 +9,13 @@
 #include "grid/map_combine.hpp"
 #include "sensor/scan_points.hpp"
 #include "sim/loop_world.hpp"
+#include "sim/test_laps.hpp"
 #include "slam/loop_closer.hpp"
 #include "slam/slam.hpp"
 #include "slam/submaps.hpp"
 
 namespace dsswarm {
 namespace {
-
-// 1.3 laps of a 40 m × 24 m corridor ring seen with an 8 m lidar, odometry
-// turning 0.05 rad too much per metre (for the tests that run Slam on it).
-SimulatedRun long_loop(double laps = 1.3) {
-  LoopWorldConfig config;
-  config.laps = laps;
-  const LoopWorld w = make_loop_world(config);
-  LidarConfig lidar;
-  lidar.range_max = 8.0;
-  lidar.noise_std = 0.02;
-  RobotConfig robot;
-  robot.odom_drift = 0.05;
-  return simulate_run(w.world, w.tour, w.start, robot, lidar, 1);
-}
 
 Trajectory stamped(const SimulatedRun& run, const std::vector<Pose2>& poses) {
   Trajectory t;
@@ -76,7 +63,7 @@ void close_loops(const SlamConfig& config, const SimulatedRun& sim, const std::v
 }
 
 TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
-  const SimulatedRun sim = long_loop();
+  const SimulatedRun sim = test::long_loop();
   // Local SLAM's drift is injected rather than left to the front end, whose
   // drift here depended on floating point (0.27 m ATE on x86, 0.11 m on x86
   // with fused multiply-adds, 0.02 m on arm64). 0.6 mrad/m puts local SLAM 4
@@ -117,7 +104,7 @@ TEST(LoopClosing, TheDriftOfALongLoopIsTakenOutWithRightClosuresOnly) {
 }
 
 TEST(LoopClosing, ASubmapClosedNearbyIsNotSearchedAgainAndTheLoopStillCloses) {
-  const SimulatedRun sim = long_loop();
+  const SimulatedRun sim = test::long_loop();
   const std::vector<Pose2> local = with_heading_drift(sim, 0.0006);
   const auto closed_with = [&](double reclose_travel, LoopClosureStats& stats) {
     SlamConfig config = with_loop_closure();
@@ -139,7 +126,7 @@ TEST(LoopClosing, ASubmapClosedNearbyIsNotSearchedAgainAndTheLoopStillCloses) {
 }
 
 TEST(LoopClosing, NodesHangOnTheirSubmapsAndTheGlobalMapIsTheSubmapsAtTheirPoses) {
-  const SimulatedRun sim = long_loop(1.1);
+  const SimulatedRun sim = test::long_loop(1.1);
   Slam slam(with_loop_closure());
   run(slam, sim);
   const LoopCloser& closer = slam.loop_closer();
@@ -180,7 +167,7 @@ TEST(LoopClosing, NodesHangOnTheirSubmapsAndTheGlobalMapIsTheSubmapsAtTheirPoses
 }
 
 TEST(LoopClosing, LocalizingInASavedMapLeavesItUnchanged) {
-  const SimulatedRun sim = long_loop(1.1);
+  const SimulatedRun sim = test::long_loop(1.1);
   Slam mapping(with_loop_closure());
   run(mapping, sim);
   const MultiResMap saved = mapping.own_map();

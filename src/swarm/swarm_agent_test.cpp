@@ -118,15 +118,7 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
 TEST(SwarmAgent, AMapThatLoopClosingMovedAfterTheMergeIsFollowed) {
   // b drives 1.3 laps of a corridor ring on odometry that turns too much,
   // and closes the loop long after it met a.
-  LoopWorldConfig world;
-  world.laps = 1.3;
-  const LoopWorld w = make_loop_world(world);
-  LidarConfig lidar;
-  lidar.range_max = 8.0;
-  lidar.noise_std = 0.02;
-  RobotConfig robot;
-  robot.odom_drift = 0.05;
-  const SimulatedRun rb = simulate_run(w.world, w.tour, w.start, robot, lidar, 1), ra = test::lap(0, 1);
+  const SimulatedRun rb = test::long_loop(1.3, 1), ra = test::lap(0, 1);
   SlamConfig tie_only = with_loop_closure();
   tie_only.loop_closure.foreign_max_pieces = 0;  // the encounter alone places b's frame
   SwarmAgent a("a", tie_only), b("b", with_loop_closure());
