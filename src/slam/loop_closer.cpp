@@ -136,7 +136,7 @@ bool LoopCloser::move_encounter(int frame, std::uint64_t encounter, const Pose2&
   // the scan moves, the node goes with it.
   Pose2& relative = constraints_[it->second.constraint].relative;
   const Pose2 moved = now * then.inverse() * it->second.measured;
-  if (moved.x == relative.x && moved.y == relative.y && moved.theta == relative.theta) return false;
+  if (same_pose(moved, relative)) return false;
   relative = moved;
   new_constraints_ = true;
   return true;
