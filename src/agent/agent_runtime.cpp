@@ -79,6 +79,7 @@ AgentRuntime::AgentRuntime(AgentOptions options, ScanFeed& feed, protocol::Swarm
   shared_ = std::make_unique<SharedAgent>(make_agent(options_, loop_closing_, scans_before_, resumed_at_, trajectory),
                                           options_.swarm.encounter.locate);
   shared_->restore_trajectory(std::move(trajectory));
+  if (outputs_) live_map_ = std::make_unique<LiveMapOutput>(*shared_, *outputs_);
   engine_ = std::make_unique<protocol::EncounterEngine>(options_.name, options_.swarm, *shared_, options_.incarnation);
 }
 
@@ -162,9 +163,7 @@ void AgentRuntime::after_scan(const LaserScan& scan, const SlamStep& step) {
   }
   if (outputs_) {
     outputs_->pose(scan.timestamp, step.pose, scan.odometry);
-    if (outputs_->map_due(t))
-      outputs_->map(shared_->with_agent([](const SwarmAgent& a) { return a.slam().map().finest().to_raster(); }),
-                    scan.timestamp);
+    live_map_->after_scan(scan.timestamp, t);
   }
   if (options_.checkpoint_period > 0.0 && now() - last_checkpoint_ >= options_.checkpoint_period) {
     last_checkpoint_ = now();

@@ -23,6 +23,8 @@
 #include <nlohmann/json.hpp>
 
 #include "agent/scan_feed.hpp"
+#include "agent/live_map_output.hpp"
+#include "agent/robot_outputs.hpp"
 #include "agent/shared_agent.hpp"
 #include "agent/triggers.hpp"
 #include "common/warning_throttle.hpp"
@@ -32,15 +34,6 @@
 #include "runtime/worker_thread.hpp"
 
 namespace dsswarm::agent {
-
-// The live, ROS-facing side of a robot (net/ros2_output in a robot process).
-class RobotOutputs {
- public:
-  virtual ~RobotOutputs() = default;
-  virtual void pose(double stamp, const Pose2& map_pose, const std::optional<Pose2>& odometry) = 0;
-  virtual bool map_due(SteadyClock::time_point now) const = 0;
-  virtual void map(GridRaster raster, double stamp) = 0;
-};
 
 struct AgentOptions {
   std::string name;
@@ -117,6 +110,7 @@ class AgentRuntime {
   SteadyClock::time_point started_;
   WorkerThread loop_closing_;  // the robot's loop-closing rounds, off the scan path (outlives shared_)
   std::unique_ptr<SharedAgent> shared_;
+  std::unique_ptr<LiveMapOutput> live_map_;  // /map, when there are outputs (before shared_ goes)
   std::uint64_t scans_before_ = 0;  // processed in earlier runs (resumed)
   std::optional<double> resumed_at_;  // stamp of the checkpoint's last pose (resumed)
 

@@ -14,8 +14,9 @@ namespace {
 
 constexpr float kNothing = 1e-4f;  // below this a source cell knows nothing
 
+// A target with fewer levels takes the source's finest ones (a picture needs only the finest).
 void check_compatible(const MultiResMap& target, const MultiResMap& source) {
-  if (source.levels() != target.levels() || source.config().resolution != target.config().resolution)
+  if (source.levels() < target.levels() || source.config().resolution != target.config().resolution)
     throw ConfigError("cannot merge maps of different resolution or levels (" +
                       std::to_string(source.config().resolution) + " m × " + std::to_string(source.levels()) +
                       " vs " + std::to_string(target.config().resolution) + " m × " +

@@ -29,12 +29,13 @@ struct TileBand {
 // crosses instead of aliasing it — and combines them with the target's
 // evidence model (Dempster plus the unknown-mass floor). Cells the source knows
 // nothing about are left alone (no tiles are allocated for them).
-// Throws ConfigError if the two maps differ in resolution or levels.
+// A target with fewer levels takes the source's finest ones. Throws
+// ConfigError if the two maps differ in resolution or the source has fewer levels.
 void combine_into(MultiResMap& target, const MultiResMap& source, const Pose2& source_in_target,
                   const TileBand& band = {});
 
 // The same for two maps whose cells coincide (same frame): cell by cell, no
-// resampling. Throws ConfigError if the two maps differ in resolution or levels.
+// resampling. The same levels rule as combine_into.
 void combine_aligned(MultiResMap& target, const MultiResMap& source, const TileBand& band = {});
 
 }  // namespace dsswarm

@@ -146,6 +146,8 @@ class Slam {
   std::vector<Pose2> trajectory() const { return closer_.trajectory(); }
   std::vector<Pose2> local_trajectory() const { return closer_.local_trajectory(); }
   const Submaps& submaps() const { return submaps_; }
+  // Localizing in a given map that never changes (MapUse::localize).
+  bool localizing_only() const { return localize_only_; }
   // This robot's finished submaps as another robot holds them: each one's
   // evidence (shared, not copied) where its cells lie in our global frame.
   std::vector<ForeignPiece> finished_pieces() const;

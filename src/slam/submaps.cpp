@@ -186,17 +186,20 @@ void combine_band(MultiResMap& map, const MapConfig& config, const std::vector<c
   for (std::size_t i = 0; i < submaps.size(); ++i) {
     const Extent& e = extents[i];
     if (!e.empty && (e.hi + margin < band.from || e.lo - margin >= band.to)) continue;
-    const Submap* s = submaps[i];
-    const MultiResMap thawed = s->finished ? s->frozen.thaw(config) : MultiResMap();
-    const MultiResMap& cells = s->finished ? thawed : s->map;
-    if (is_identity(poses[i]))
-      combine_aligned(map, cells, band);
-    else
-      combine_into(map, cells, poses[i], band);
+    add_submap(map, *submaps[i], poses[i], band);
   }
 }
 
 }  // namespace
+
+void add_submap(MultiResMap& map, const Submap& submap, const Pose2& cells_pose, const TileBand& band) {
+  const MultiResMap thawed = submap.finished ? submap.frozen.thaw(map.config()) : MultiResMap();
+  const MultiResMap& cells = submap.finished ? thawed : submap.map;
+  if (is_identity(cells_pose))
+    combine_aligned(map, cells, band);
+  else
+    combine_into(map, cells, cells_pose, band);
+}
 
 MultiResMap combine_submaps(const MapConfig& config, const std::vector<const Submap*>& submaps,
                             const std::function<Pose2(int)>& cells_pose, Executor* helper) {

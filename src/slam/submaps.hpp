@@ -13,17 +13,18 @@
 // submap's anchor is the local pose of its first scan; the pose graph places
 // it globally, and its cells then sit at global_anchor ⊕ anchor⁻¹.
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "geometry/pose2.hpp"
 #include "grid/frozen_map.hpp"
+#include "grid/map_combine.hpp"
 #include "grid/multires_map.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/scan_points.hpp"
 #include "slam/executor.hpp"
-#include <functional>
 
 namespace dsswarm {
 
@@ -111,6 +112,10 @@ class Submaps {
   std::optional<Pose2> last_insert_pose_;
   std::size_t inserted_ = 0;
 };
+
+// Combines one submap's evidence into `map` (Dempster's rule), its cells at
+// `cells_pose`; within `band` only.
+void add_submap(MultiResMap& map, const Submap& submap, const Pose2& cells_pose, const TileBand& band = {});
 
 // Combines `submaps` into one map (Dempster's rule, in the order given),
 // each one's cells placed at cells_pose(id): the global map. With `helper`,

@@ -134,6 +134,11 @@ MapLayer SwarmAgent::own_layer() const {
                   slam_.finished_pieces()};
 }
 
+std::optional<LiveMapParts> SwarmAgent::live_map_parts() const {
+  if (!loop_closing() || slam_.localizing_only()) return std::nullopt;
+  return dsswarm::live_map_parts(slam_, knowledge_.layers());
+}
+
 std::vector<LayerVersion> SwarmAgent::inventory() const {
   std::vector<LayerVersion> out{{name_, own_version(), 0}};
   for (const MapLayer& l : knowledge_.layers()) out.push_back({l.origin, l.version, l.hops});

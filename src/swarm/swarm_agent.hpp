@@ -12,6 +12,7 @@
 
 #include "slam/slam.hpp"
 #include "swarm/encounter.hpp"
+#include "swarm/live_map.hpp"
 #include "swarm/map_knowledge.hpp"
 
 namespace dsswarm {
@@ -92,6 +93,12 @@ class SwarmAgent {
   static MultiResMap compose(const ComposeJob& job);
   void install(MultiResMap working, std::size_t own_version);
   void cancel_job();  // a job that will never be installed (a newer one superseded it)
+
+  // What /map shows with loop closure on, taken apart for composing off the
+  // scan path (live_map.hpp): own submaps where the graph has them now, and
+  // the layers held at their frames now. nullopt without loop closure (or
+  // localizing only): then the working map is it, kept as it goes.
+  std::optional<LiveMapParts> live_map_parts() const;
 
   // The layers snapshot() would hold (origin, version, hops), without copying maps.
   std::vector<LayerVersion> inventory() const;
