@@ -68,13 +68,14 @@ Trajectory SharedAgent::optimized_trajectory() const {
 SharedAgent::Staged SharedAgent::capture_locked() const {
   // The engine works on the view while scans keep changing the map: it gets
   // its own frozen copy.
-  const MultiResMap& working = agent_->slam().map();
+  const MultiResMap& placed_in = agent_->placement_map();
   const MultiResMap& own = agent_->slam().own_map();
-  auto map = std::make_shared<const MultiResMap>(working);
+  auto map = std::make_shared<const MultiResMap>(placed_in);
+  const bool own_only = &placed_in == &own;
   Staged s{{agent_->view(locate_), agent_->last_scan()->timestamp, map,
-            &working == &own ? map : std::make_shared<const MultiResMap>(own), agent_->own_version(),
+            own_only ? map : std::make_shared<const MultiResMap>(own), agent_->own_version(),
             agent_->loop_closing() ? std::make_shared<const MapLayer>(agent_->own_layer()) : nullptr},
-           &working == &own ? std::vector<LayerVersion>{} : installed_};
+           own_only ? std::vector<LayerVersion>{} : installed_, own_only && agent_->loop_closing()};
   s.view.view.map = map.get();
   return s;
 }
@@ -85,6 +86,7 @@ SharedAgent::Staged SharedAgent::capture_locked() const {
 // since: then its map is composed again, from the own map at the scan and
 // what the robot knows now. The composing is the swarm thread's, off the scan path.
 protocol::CapturedView SharedAgent::up_to_date(Staged staged) const {
+  if (staged.own_only) return std::move(staged.view);
   std::vector<MapLayer> layers;
   {
     std::lock_guard lock(mutex_);

@@ -70,6 +70,7 @@ class SharedAgent : public protocol::AgentPort {
   struct Staged {
     protocol::CapturedView view;       // view.own: the own map at the scan
     std::vector<LayerVersion> layers;  // the foreign layers view.map holds
+    bool own_only = false;             // view.map is the own map (loop closure on): nothing to bring up to date
   };
   Staged capture_locked() const;
   protocol::CapturedView up_to_date(Staged staged) const;

@@ -103,7 +103,7 @@ bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
 
 EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   EncounterView v;
-  v.map = &slam_.map();
+  v.map = &placement_map();
   v.pose = slam_.pose();
   v.scan_index = slam_.scans_processed() > 0 ? slam_.scans_processed() - 1 : 0;
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);

@@ -42,9 +42,16 @@ class SwarmAgent {
   // follows the others' last word on their maps).
   void finish(bool compose = true);
 
-  // What this robot puts on the table at an encounter.
-  // Working map, current scan, pose and surroundings (as `config` asks).
+  // What this robot puts on the table at an encounter: the map it places the
+  // peer's scan in (placement_map), current scan, pose and surroundings (as
+  // `config` asks).
   EncounterView view(const RelativePoseConfig& config) const;
+  // The map a peer's scan is placed in. Without loop closure the working map
+  // (own ⊕ foreign), which the robot localizes in too. With loop closure on
+  // the robot localizes in its own submaps only, and its pose fits them, not
+  // the foreign layers: a layer merged slightly off would pull the placement
+  // its way. So the own map.
+  const MultiResMap& placement_map() const { return loop_closing() ? slam_.own_map() : slam_.map(); }
   MapSnapshot snapshot() const;      // own map (layer 0) + everything known of others
   // Layer 0 of snapshot(). With loop closure on, the finished submaps go as
   // pieces at their optimized poses, so that holders follow its closures.

@@ -112,6 +112,35 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
   EXPECT_EQ(largest_difference(want.finest(), a.slam().map().finest()), 0.0);
 }
 
+// With loop closure on a robot localizes in its own submaps, so a peer's
+// scan is placed in its own map, not in own ⊕ the layers merged (one merged
+// a little off would pull the placement its way: docs/loop_closure.md).
+TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) {
+  const SimulatedRun ra = test::lap(0, 1), rb = test::lap(2, 2);
+  const Pose2 start_a = ra.ground_truth.front().second;
+  SwarmAgent b("b", with_loop_closure());
+  for (std::size_t i = 0; i < 200; ++i) b.process(rb.log.scans[i]);
+  SwarmAgent a("a", with_loop_closure());
+  constexpr std::size_t meet = 60;
+  for (std::size_t i = 0; i <= meet; ++i) a.process(ra.log.scans[i]);
+  ASSERT_TRUE(a.merge(b.snapshot(), between(start_a, rb.ground_truth.front().second)));
+  ASSERT_GT(largest_difference(a.slam().map().finest(), a.slam().own_map().finest()), 0.1);  // b's evidence is merged
+  const EncounterConfig config;
+  const EncounterView self = a.view(config.locate);
+  EXPECT_EQ(self.map, &a.slam().own_map());
+  // a's own scan, offered as a peer's would be, lands where a is.
+  const Pose2 d = between(self.pose, locate_peer(self, self, config, 7).located.best.pose);
+  EXPECT_LT(std::hypot(d.x, d.y), 0.01);
+
+  SlamConfig one_map;
+  one_map.loop_closure.enabled = false;
+  SwarmAgent plain("p", one_map);  // one map: the robot localizes in own ⊕ foreign, and places peers there
+  plain.process(ra.log.scans[0]);
+  ASSERT_TRUE(plain.merge(b.snapshot(), Pose2()));
+  EXPECT_EQ(plain.view(config.locate).map, &plain.slam().map());
+  EXPECT_NE(&plain.slam().map(), &plain.slam().own_map());
+}
+
 // After a merge, the robot whose map was merged goes on and closes its loop,
 // which moves its submaps and the scan where the two met: told so
 // (MapMoves), the holder's copy and the tie follow.
