@@ -265,6 +265,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)},
         {"repeat_xy", DSS_SWARM_FIELD(double, repeat_xy)},
         {"repeat_theta", DSS_SWARM_FIELD(double, repeat_theta)},
+        {"repeat_retries", DSS_SWARM_FIELD(int, repeat_retries)},
         {"exchange_timeout", DSS_SWARM_FIELD(double, exchange_timeout)},
         {"offer_timeout", DSS_SWARM_FIELD(double, offer_timeout)},
         {"chunk_bytes", DSS_SWARM_FIELD(std::size_t, chunk_bytes)},

@@ -31,7 +31,7 @@ EncounterEngine::EncounterEngine(std::string self, const SwarmConfig& config, Ag
       port_(port),
       stamper_(self_, incarnation),
       followers_(config.moves_interval, config.max_followed_encounters),
-      repeats_(config.repeat_xy, config.repeat_theta) {
+      repeats_(config.repeat_xy, config.repeat_theta, config.repeat_retries) {
   config_.validate();
 }
 
@@ -230,7 +230,8 @@ void EncounterEngine::decide(Exchange& x, double now) {
                                 config_.encounter);
   o.decided = x.decided = true;
   const Offered offered{x.mine.view.pose, x.my_inventory}, received{x.offer->pose, x.offer->inventory};
-  repeats_.decided(x.peer, x.id, x.self_is_a ? offered : received, x.self_is_a ? received : offered);
+  repeats_.decided(x.peer, x.id, x.self_is_a ? offered : received, x.self_is_a ? received : offered,
+                   o.estimate.accepted);
   x.accepted = o.estimate.accepted;
   o.reason = o.estimate.reason;
   if (x.accepted && config_.confirm) confirm(x);

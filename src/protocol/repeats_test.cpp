@@ -39,5 +39,24 @@ TEST(RepeatGuard, AMoveOrAnythingNewOnEitherSideIsNoRepeat) {
   EXPECT_EQ(guard.repeats("b", kA, moved), 8u);
 }
 
+// A random search may miss what a second one finds: a repeat of an
+// encounter turned down runs again (here once), one verified never does.
+TEST(RepeatGuard, ARepeatOfOneTurnedDownRunsAgainAsOftenAsAllowed) {
+  RepeatGuard guard(0.05, 0.0175, 1);
+  guard.decided("b", 7, kA, kB, false);
+  EXPECT_FALSE(guard.repeats("b", kA, kB));  // turned down once: run it again
+  guard.decided("b", 8, kA, kB, false);
+  EXPECT_EQ(guard.repeats("b", kA, kB), 8u);  // twice: enough
+  guard.decided("c", 3, kA, kB, false);
+  guard.decided("c", 4, kA, kB, true);  // the second run verified
+  EXPECT_EQ(guard.repeats("c", kA, kB), 4u);
+  guard.decided("d", 5, kA, kB, true);
+  EXPECT_EQ(guard.repeats("d", kA, kB), 5u);  // verified: a repeat cannot confirm it
+
+  RepeatGuard never(0.05, 0.0175, 0);
+  never.decided("b", 7, kA, kB, false);
+  EXPECT_EQ(never.repeats("b", kA, kB), 7u);
+}
+
 }  // namespace
 }  // namespace dsswarm::protocol

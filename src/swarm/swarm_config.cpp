@@ -22,6 +22,7 @@ void SwarmConfig::validate() const {
   if (remembered_encounters < 1) throw ConfigError("swarm.remembered_encounters must be >= 1");
   if (max_transfer_bytes < (std::size_t{1} << 20)) throw ConfigError("swarm.max_transfer_bytes must be >= 1 MiB");
   if (!(repeat_xy >= 0.0) || !(repeat_theta >= 0.0)) throw ConfigError("swarm.repeat_xy and repeat_theta must be >= 0");
+  if (repeat_retries < 0) throw ConfigError("swarm.repeat_retries must be >= 0");
   if (!(moves_interval >= 0.0)) throw ConfigError("swarm.moves_interval must be >= 0 s");
   if (max_followed_encounters < 1 || max_followed_encounters > 4096)
     throw ConfigError("swarm.max_followed_encounters must be in [1, 4096]");

@@ -44,6 +44,11 @@ struct SwarmConfig {
   // maps (protocol/repeats.hpp): parked robots are not placed again and again.
   double repeat_xy = 0.05;      // m
   double repeat_theta = 0.0175; // rad (1°)
+  // A repeat of an encounter turned down (not verified) is run again this
+  // many times: each run is a new random search, which may find what the
+  // last one missed. A verified one is never repeated (a transform cannot
+  // confirm itself).
+  int repeat_retries = 1;
   // The exchange itself (protocol/): an encounter not finished in this long
   // after both robots joined is abandoned, its partial transfer discarded (a
   // peer vanished). A peer joins (sends its offer) only once its earlier
