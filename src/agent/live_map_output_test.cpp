@@ -5,6 +5,7 @@
 #include <thread>
 #include <vector>
 
+#include "grid/test_cells.hpp"
 #include "sim/test_laps.hpp"
 
 namespace dsswarm::agent {
@@ -19,13 +20,6 @@ class Recorder : public RobotOutputs {
   std::vector<std::pair<GridRaster, double>> maps;
   mutable int asked = 0;
 };
-
-bool same_cells(const GridRaster& a, const GridRaster& b) {
-  if (a.width != b.width || a.height != b.height || a.origin != b.origin) return false;
-  for (std::size_t i = 0; i < a.cells.size(); ++i)
-    if (a.cells[i].occupied != b.cells[i].occupied || a.cells[i].free != b.cells[i].free) return false;
-  return true;
-}
 
 // Scans go on while the map is composed; after the last one, the next map
 // published is the robot's whole map as its graph has it then.
@@ -52,7 +46,7 @@ void run_and_check(const SlamConfig& config, bool composed_off_the_scan_path) {
   }
   ASSERT_EQ(recorder.maps.back().second, last);
   const GridRaster now = shared.with_agent([](const SwarmAgent& a) { return a.slam().own_map().finest().to_raster(); });
-  EXPECT_TRUE(same_cells(recorder.maps.back().first, now));
+  EXPECT_TRUE(test::same_cells(recorder.maps.back().first, now));
   EXPECT_EQ(output.composed() > 0, composed_off_the_scan_path);
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/lidar.hpp"
+#include "grid/test_cells.hpp"
 #include "swarm/map_merge.hpp"
 #include "swarm/test_scenes.hpp"
 
@@ -26,11 +27,7 @@ std::unique_ptr<SwarmAgent> robot_after_drive(const std::string& name, const Pos
 }
 
 bool same_cells(const MultiResMap& x, const MultiResMap& y) {
-  const GridRaster a = x.finest().to_raster(), b = y.finest().to_raster();
-  if (a.width != b.width || a.height != b.height || a.origin != b.origin) return false;
-  for (std::size_t i = 0; i < a.cells.size(); ++i)
-    if (a.cells[i].occupied != b.cells[i].occupied || a.cells[i].free != b.cells[i].free) return false;
-  return true;
+  return test::same_cells(x.finest().to_raster(), y.finest().to_raster());
 }
 
 const Pose2 kStartA{1.5, 1.5, 0.4}, kStartB{8.5, 2.0, -2.5};

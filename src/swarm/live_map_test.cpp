@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "grid/test_cells.hpp"
 #include "sim/test_laps.hpp"
 #include "swarm/map_merge.hpp"
 #include "swarm/swarm_agent.hpp"
@@ -9,26 +10,10 @@
 namespace dsswarm {
 namespace {
 
-double cells_apart(const DsGrid& a, const DsGrid& b) {
-  double worst = 0.0;
-  auto compare = [&worst](const DsGrid& x, const DsGrid& y) {
-    x.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
-      for (int i = 0; i < DsGrid::kTileCells; ++i) {
-        const DsMass m = y.at(DsGrid::tile_cell(origin, i));
-        worst = std::max({worst, std::abs(double{m.occupied} - cells[i].mass().occupied),
-                          std::abs(double{m.free} - cells[i].mass().free)});
-      }
-    });
-  };
-  compare(a, b);
-  compare(b, a);  // cells only one of them holds count too
-  return worst;
-}
-
 // The live map holds the finest level only.
-double cells_apart(const MultiResMap& live, const MultiResMap& b) {
+double live_apart(const MultiResMap& live, const MultiResMap& b) {
   EXPECT_EQ(live.levels(), 1);
-  return cells_apart(live.finest(), b.finest());
+  return test::cells_apart(live.finest(), b.finest());
 }
 
 // The live map is the robot's own map as its graph places the submaps now —
@@ -43,7 +28,7 @@ TEST(LiveMap, IsTheOwnMapAsTheGraphPlacesItNowAndComposesAgainOnlyWhatMoved) {
   ASSERT_TRUE(parts);
   ASSERT_GT(parts->finished.size(), 1u);
   ASSERT_TRUE(parts->growing);
-  EXPECT_EQ(cells_apart(live.compose(*parts), b.slam().own_map()), 0.0);
+  EXPECT_EQ(live_apart(live.compose(*parts), b.slam().own_map()), 0.0);
   EXPECT_EQ(live.base_compositions(), 1u);
 
   // One more scan into the growing submap: the rest is reused.
@@ -54,13 +39,13 @@ TEST(LiveMap, IsTheOwnMapAsTheGraphPlacesItNowAndComposesAgainOnlyWhatMoved) {
   ASSERT_EQ(parts->finished.size(), b.slam().submaps().finished().size());
   const MultiResMap one_more = live.compose(*parts);
   EXPECT_EQ(live.base_compositions(), 1u);
-  EXPECT_EQ(cells_apart(one_more, b.slam().own_map()), 0.0);
+  EXPECT_EQ(live_apart(one_more, b.slam().own_map()), 0.0);
 
   // The rest of the ring closes the loop: every submap moves, and the live map with them.
   for (std::size_t i = half + 1; i < run.log.scans.size(); ++i) b.process(run.log.scans[i]);
   b.finish();
   ASSERT_GT(b.graph_revision(), revision);
-  EXPECT_EQ(cells_apart(live.compose(*b.live_map_parts()), b.slam().own_map()), 0.0);
+  EXPECT_EQ(live_apart(live.compose(*b.live_map_parts()), b.slam().own_map()), 0.0);
   EXPECT_EQ(live.base_compositions(), 2u);
 
   SlamConfig one_map;
@@ -84,16 +69,16 @@ TEST(LiveMap, HoldsTheOtherRobotsLayerWhereItLiesNow) {
   constexpr double kRounding = 1e-3;
   auto expected = [&a] { return compose_working_map(a.slam().own_map(), a.knowledge().layers()); };
   const MultiResMap before = live.compose(*a.live_map_parts());
-  EXPECT_LE(cells_apart(before, expected()), kRounding);
-  EXPECT_GT(cells_apart(before.finest(), a.slam().own_map().finest()), 0.1);  // b's evidence is in
+  EXPECT_LE(live_apart(before, expected()), kRounding);
+  EXPECT_GT(test::cells_apart(before.finest(), a.slam().own_map().finest()), 0.1);  // b's evidence is in
 
   for (std::size_t i = rb.log.scans.size() / 3; i < rb.log.scans.size(); ++i) b.process(rb.log.scans[i]);
   b.finish();  // closes its loop: its submaps move
   ASSERT_TRUE(a.follow("b", b.moves({})));
   const MultiResMap after = live.compose(*a.live_map_parts());
   EXPECT_EQ(live.base_compositions(), 2u);
-  EXPECT_LE(cells_apart(after, expected()), kRounding);
-  EXPECT_GT(cells_apart(after.finest(), before.finest()), 0.1);
+  EXPECT_LE(live_apart(after, expected()), kRounding);
+  EXPECT_GT(test::cells_apart(after.finest(), before.finest()), 0.1);
 }
 
 }  // namespace

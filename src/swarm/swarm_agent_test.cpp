@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include "grid/test_cells.hpp"
 #include "sim/test_laps.hpp"
 #include "swarm/map_merge.hpp"
 #include "swarm/test_scenes.hpp"
@@ -26,17 +27,6 @@ std::vector<LaserScan> drive(const Pose2& from, const Pose2& to, int scans, std:
   return out;
 }
 
-double largest_difference(const DsGrid& a, const DsGrid& b) {
-  double worst = 0.0;
-  a.for_each_tile([&](CellIndex origin, const PackedMass* cells) {
-    for (int i = 0; i < DsGrid::kTileCells; ++i) {
-      const DsMass m = b.at(DsGrid::tile_cell(origin, i));
-      worst = std::max({worst, std::abs(double{m.occupied} - cells[i].mass().occupied), std::abs(double{m.free} - cells[i].mass().free)});
-    }
-  });
-  return worst;
-}
-
 TEST(SwarmAgent, ComposingOffTheScanPathLosesNoScanAndCountsNoneTwice) {
   SwarmAgent a("a", SlamConfig{}), b("b", SlamConfig{});
   const auto scans_a = drive({1.5, 1.5, 0.4}, {3.5, 2.0, 0.1}, 40, 1);
@@ -56,9 +46,9 @@ TEST(SwarmAgent, ComposingOffTheScanPathLosesNoScanAndCountsNoneTwice) {
   ASSERT_GT(a.slam().scans_inserted(), job.own_version);
   a.install(SwarmAgent::compose(job), job.own_version);
   for (int level = 0; level < expected.levels(); ++level)
-    EXPECT_EQ(largest_difference(expected.level(level), a.slam().map().level(level)), 0.0) << "level " << level;
+    EXPECT_EQ(test::largest_difference(expected.level(level), a.slam().map().level(level)), 0.0) << "level " << level;
   // b's evidence is in the working map, not in the own map a shares.
-  EXPECT_GT(largest_difference(a.slam().map().finest(), a.slam().own_map().finest()), 0.1);
+  EXPECT_GT(test::largest_difference(a.slam().map().finest(), a.slam().own_map().finest()), 0.1);
 }
 
 // With loop closure on, an encounter is a constraint between the scan it was
@@ -109,7 +99,7 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
   EXPECT_GT(a.slam().loop_closer().stats().foreign_accepted, 10u);
   // The merged map is B's pieces where the graph put B's frame.
   const MultiResMap want = compose_working_map(a.slam().own_map(), a.knowledge().layers());
-  EXPECT_EQ(largest_difference(want.finest(), a.slam().map().finest()), 0.0);
+  EXPECT_EQ(test::largest_difference(want.finest(), a.slam().map().finest()), 0.0);
 }
 
 // With loop closure on a robot localizes in its own submaps, so a peer's
@@ -124,7 +114,7 @@ TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) 
   constexpr std::size_t meet = 60;
   for (std::size_t i = 0; i <= meet; ++i) a.process(ra.log.scans[i]);
   ASSERT_TRUE(a.merge(b.snapshot(), between(start_a, rb.ground_truth.front().second)));
-  ASSERT_GT(largest_difference(a.slam().map().finest(), a.slam().own_map().finest()), 0.1);  // b's evidence is merged
+  ASSERT_GT(test::largest_difference(a.slam().map().finest(), a.slam().own_map().finest()), 0.1);  // b's evidence is merged
   const EncounterConfig config;
   const EncounterView self = a.view(config.locate);
   EXPECT_EQ(self.map, &a.slam().own_map());
