@@ -10,6 +10,7 @@
 #include <set>
 #include <utility>
 
+#include "apps/scenario_file.hpp"
 #include "common/agent_name.hpp"
 #include "common/errors.hpp"
 #include "sensor/play_clock.hpp"
@@ -19,6 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using scenario_detail::load_root;
+using scenario_detail::ScenarioFile;
+
 // Slack on segment bounds and log times: relation files give scan timestamps
 // to 1 ms, and `t0 + fraction * duration` need not round back to a timestamp exactly.
 constexpr double kBoundSlack = 1e-6;  // s
@@ -26,113 +30,6 @@ constexpr double kLogTimeSlack = 1e-3;  // s
 // Beyond this, an encounter's second log time is reported as not where the
 // second agent actually is at the encounter.
 constexpr double kLogTimeMismatchWarning = 1.0;  // s
-
-// Error messages: "FILE: line N: CONTEXT key 'KEY': WHAT", where CONTEXT says
-// which agent or encounter ("agents[1] (robot2):").
-class ScenarioFile {
- public:
-  explicit ScenarioFile(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& context, const std::string& key,
-                         const std::string& what) const {
-    throw InputError(fmt::format("{}: line {}: {}key '{}': {}", file_, node.Mark().line + 1, prefix(context), key,
-                                 what));
-  }
-
-  [[noreturn]] void fail_missing(const YAML::Node& parent, const std::string& context, const std::string& key,
-                                 const std::string& what = "") const {
-    throw InputError(fmt::format("{}: line {}: {}missing key '{}'{}", file_, parent.Mark().line + 1,
-                                 prefix(context), key, what.empty() ? "" : " (" + what + ")"));
-  }
-
-  // Unknown keys are errors: a misspelt `from` must not silently play the whole log.
-  void check_keys(const YAML::Node& map, const std::string& context, const std::string& what,
-                  const std::set<std::string>& allowed) const {
-    if (!map.IsMap()) {
-      throw InputError(fmt::format("{}: line {}: {}expected {} (a mapping of keys)", file_, map.Mark().line + 1,
-                                   prefix(context), what));
-    }
-    std::set<std::string> seen;
-    for (const auto& entry : map) {
-      const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : std::string("?");
-      if (!allowed.count(key)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(entry.first, context, key, fmt::format("unknown key (expected one of: {})", list));
-      }
-      if (!seen.insert(key).second) fail(entry.first, context, key, "given twice");
-    }
-  }
-
-  std::string text(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    if (!node.IsScalar()) fail(node, context, key, "expected a single value");
-    if (node.Scalar().empty()) fail(node, context, key, "empty value");
-    return node.Scalar();
-  }
-
-  double number(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    const std::string t = text(node, context, key);
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(node, context, key, fmt::format("'{}' is not a number", t));
-    }
-    if (!std::isfinite(value)) fail(node, context, key, fmt::format("'{}' is not a finite number", t));
-    return value;
-  }
-
-  double non_negative(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    const double v = number(node, context, key);
-    if (v < 0.0) fail(node, context, key, fmt::format("{} is negative (a time in seconds >= 0 is needed)", v));
-    return v;
-  }
-
-  double fraction(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    const double v = number(node, context, key);
-    if (v < 0.0 || v > 1.0) fail(node, context, key, fmt::format("{} is outside [0, 1]", v));
-    return v;
-  }
-
-  // An existing file named relative to the scenario's folder.
-  // `folder_ok`: a folder will do (a ROS 2 bag is one).
-  fs::path existing_file(const YAML::Node& node, const std::string& context, const std::string& key,
-                         bool folder_ok = false) const {
-    const fs::path given = text(node, context, key);
-    const fs::path resolved = given.is_absolute() ? given : fs::path(file_).parent_path() / given;
-    std::error_code ec;
-    if (!fs::is_regular_file(resolved, ec) && !(folder_ok && fs::is_directory(resolved, ec))) {
-      fail(node, context, key, fmt::format("file not found: {}", resolved.string()));
-    }
-    return resolved.lexically_normal();
-  }
-
-  const std::string& file() const { return file_; }
-
- private:
-  static std::string prefix(const std::string& context) { return context.empty() ? "" : context + " "; }
-
-  std::string file_;
-};
-
-// `load` parses the scenario's YAML (from its file or from text).
-template <typename Load>
-YAML::Node load_root(const fs::path& yaml, Load load) {
-  YAML::Node root;
-  try {
-    root = load();
-  } catch (const YAML::ParserException& e) {
-    throw InputError(fmt::format("{}: line {}: invalid YAML: {}", yaml.string(), e.mark.line + 1, e.msg));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: cannot read scenario: {}", yaml.string(), e.what()));
-  }
-  if (!root.IsMap()) {
-    throw InputError(fmt::format("{}: expected a scenario (a mapping with 'agents' and optionally 'name', "
-                                 "'config', 'relations', 'encounters')",
-                                 yaml.string()));
-  }
-  return root;
-}
 
 // Agent names become folder names in the swarm command's output.
 struct AgentSpec {
