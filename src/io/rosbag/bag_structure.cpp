@@ -7,9 +7,6 @@
 // connection records. All integers are little-endian.
 #include "io/rosbag/bag_structure.hpp"
 
-#include <bzlib.h>
-#include <roslz4/lz4s.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -21,6 +18,8 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "io/rosbag/bag_chunk.hpp"
+#include "io/rosbag/bag_fields.hpp"
 
 namespace dsswarm::rosbag_raw {
 namespace {
@@ -28,7 +27,6 @@ namespace {
 constexpr char kMagic[] = "#ROSBAG V2.0\n";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 constexpr std::uint32_t kMaxHeaderSize = 1U << 24;  // headers are a few hundred bytes
-constexpr std::uint32_t kMaxChunkSize = 1U << 30;   // rosbag writes ~768 kB chunks
 constexpr std::size_t kRecordLengthFields = 8;      // header_len + data_len
 
 enum Op : std::uint8_t {
@@ -39,45 +37,6 @@ enum Op : std::uint8_t {
   kChunkInfo = 0x06,
   kConnection = 0x07,
 };
-
-using Fields = std::map<std::string, std::string>;
-
-std::uint32_t le32(const char* p) {
-  std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(p[i]);
-  return v;
-}
-
-std::uint64_t le64(const char* p) {
-  return (static_cast<std::uint64_t>(le32(p + 4)) << 32) | le32(p);
-}
-
-// The fields of a record header (or of a connection record's data), or false
-// when the bytes are not a well-formed field list.
-bool parse_fields(const char* p, std::size_t n, Fields& fields) {
-  fields.clear();
-  std::size_t at = 0;
-  while (at < n) {
-    if (n - at < 4) return false;
-    const std::uint32_t len = le32(p + at);
-    at += 4;
-    if (len > n - at) return false;
-    const std::string field(p + at, len);
-    at += len;
-    const std::size_t eq = field.find('=');
-    if (eq == std::string::npos || eq == 0) return false;
-    fields[field.substr(0, eq)] = field.substr(eq + 1);
-  }
-  return true;
-}
-
-// For error messages: control and non-ASCII bytes as '?'.
-std::string printable(std::string text) {
-  for (char& c : text) {
-    if (c < 0x20 || c > 0x7e) c = '?';
-  }
-  return text;
-}
 
 class StructureCheck {
  public:
@@ -111,8 +70,7 @@ class StructureCheck {
   };
 
   [[noreturn]] void damaged(const std::string& what, std::uint64_t pos) const {
-    throw InputError(path_ + ": damaged ROS1 bag: " + what + " (record at byte " +
-                     std::to_string(pos) + ")");
+    damaged_record(path_, what, pos);
   }
 
   bool read_exact(std::uint64_t pos, char* out, std::size_t n) {
@@ -158,14 +116,9 @@ class StructureCheck {
     return static_cast<std::uint8_t>(it->second[0]);
   }
 
-  // A fixed-size integer field (rosbag_storage insists on the exact size).
   std::uint64_t field(const Fields& fields, const char* name, std::size_t size,
                       std::uint64_t pos) const {
-    const auto it = fields.find(name);
-    if (it == fields.end() || it->second.size() != size) {
-      damaged(std::string("field '") + name + "' missing or of the wrong size", pos);
-    }
-    return size == 8 ? le64(it->second.data()) : le32(it->second.data());
+    return fixed_size_field(path_, fields, name, size, pos);
   }
 
   std::uint64_t top_level_record(std::uint64_t pos) {
@@ -217,82 +170,9 @@ class StructureCheck {
     if (top_level) connection_ids_.insert(id);
   }
 
-  // The chunk's records. Nothing is allocated for a size the chunk cannot
-  // hold: a 9 kB bag claiming a 1 GB chunk made this check allocate (and
-  // clear) 1 GB (found by fuzzing).
-  std::vector<char> decompress(const Fields& fields, const std::string& data,
-                               std::uint64_t pos) const {
-    const auto compression = fields.find("compression");
-    const auto size = static_cast<std::uint32_t>(field(fields, "size", 4, pos));
-    if (compression == fields.end()) damaged("chunk without a compression field", pos);
-    if (size > kMaxChunkSize) damaged("implausible chunk size " + std::to_string(size), pos);
-    std::vector<char> in(data.begin(), data.end());  // the C APIs take non-const pointers
-    std::vector<char> out;
-    if (compression->second == "none") {
-      if (data.size() != size)
-        damaged("uncompressed chunk whose size field disagrees with its length", pos);
-      return in;
-    } else if (compression->second == "bz2") {
-      out = inflate_bz2(in, size, pos);
-    } else if (compression->second == "lz4") {
-      // An LZ4 byte stands for at most 255 output bytes.
-      constexpr std::uint64_t kMaxLz4Ratio = 255, kLz4FrameSlack = 1 << 16;
-      if (size > kMaxLz4Ratio * in.size() + kLz4FrameSlack) {
-        damaged("lz4 chunk of " + std::to_string(in.size()) + " bytes cannot hold the " +
-                    std::to_string(size) + " bytes its header says",
-                pos);
-      }
-      out.resize(size);
-      unsigned int out_size = size;
-      const int rc = roslz4_buffToBuffDecompress(in.data(), static_cast<unsigned int>(in.size()),
-                                                 out.data(), &out_size);
-      if (rc != ROSLZ4_OK)
-        damaged("corrupt lz4 chunk (roslz4 error " + std::to_string(rc) + ")", pos);
-      out.resize(out_size);
-    } else {
-      damaged("unknown chunk compression '" + compression->second + "'", pos);
-    }
-    if (out.size() != size) {
-      damaged("chunk decompresses to " +
-                  (out.size() > size ? "more than " + std::to_string(size) + " bytes"
-                                     : std::to_string(out.size()) + " bytes") +
-                  ", its header says " + std::to_string(size),
-              pos);
-    }
-    return out;
-  }
-
-  // bz2 can shrink data by far more than any fixed ratio, so its output
-  // grows a step at a time, to at most one byte more than `size` (which
-  // tells a chunk holding more than it says).
-  std::vector<char> inflate_bz2(std::vector<char>& in, std::uint32_t size, std::uint64_t pos) const {
-    constexpr std::size_t kStep = 1 << 20;
-    bz_stream stream{};
-    if (BZ2_bzDecompressInit(&stream, 0, 0) != BZ_OK) damaged("libbz2 cannot start", pos);
-    stream.next_in = in.data();
-    stream.avail_in = static_cast<unsigned int>(in.size());
-    std::vector<char> out;
-    std::size_t produced = 0;
-    int rc = BZ_OK;
-    while (rc == BZ_OK && produced <= size) {
-      if (produced == out.size()) out.resize(std::min<std::size_t>(std::size_t{size} + 1, out.size() + kStep));
-      stream.next_out = out.data() + produced;
-      stream.avail_out = static_cast<unsigned int>(out.size() - produced);
-      const std::size_t before = produced;
-      rc = BZ2_bzDecompress(&stream);
-      produced = out.size() - stream.avail_out;
-      if (rc == BZ_OK && stream.avail_in == 0 && produced == before) rc = BZ_UNEXPECTED_EOF;
-    }
-    BZ2_bzDecompressEnd(&stream);
-    if (rc != BZ_STREAM_END && produced <= size)
-      damaged("corrupt bz2 chunk (libbz2 error " + std::to_string(rc) + ")", pos);
-    out.resize(produced);
-    return out;
-  }
-
   // Walks the records inside a chunk; remembers where index offsets may point.
   void chunk(const Fields& fields, const std::string& data, std::uint64_t pos) {
-    const std::vector<char> bytes = decompress(fields, data, pos);
+    const std::vector<char> bytes = decompress_chunk(path_, fields, data, pos);
     chunk_pos_ = pos;
     message_offsets_.clear();
     std::vector<std::pair<std::uint32_t, std::uint8_t>> inner;  // offset, op
