@@ -1,7 +1,7 @@
 #pragma once
+#include <chrono>
 #include <optional>
 
-#include "agent/shared_agent.hpp"
 #include "geometry/pose2.hpp"
 #include "grid/grid_raster.hpp"
 
@@ -12,7 +12,7 @@ class RobotOutputs {
  public:
   virtual ~RobotOutputs() = default;
   virtual void pose(double stamp, const Pose2& map_pose, const std::optional<Pose2>& odometry) = 0;
-  virtual bool map_due(SteadyClock::time_point now) const = 0;
+  virtual bool map_due(std::chrono::steady_clock::time_point now) const = 0;
   virtual void map(GridRaster raster, double stamp) = 0;
 };
 
