@@ -139,8 +139,7 @@ void check(const AgentArgs& a) {
     throw ConfigError(fmt::format("--robot {} is not one of the {} simulated robots", a.sim_robot, a.sim_robots));
 }
 
-void run_agent(const AgentArgs& a) {
-  check(a);
+agent::AgentOptions agent_options(const AgentArgs& a) {
   agent::AgentOptions o;
   o.name = a.name;
   o.out = a.out.empty() ? std::filesystem::path("out") / "agents" / a.name : std::filesystem::path(a.out);
@@ -151,13 +150,14 @@ void run_agent(const AgentArgs& a) {
   o.heartbeat_period = a.heartbeat;
   o.peer_timeout = a.peer_timeout;
   if (a.sim_seed || !a.log.empty()) o.time_scale = a.rate;
+  return o;
+}
 
-  const StopOnSignal stop_on_signal;
-  SwarmNet net(a.net, a.name);
-  std::unique_ptr<agent::ScanFeed> feed;
-  std::vector<agent::TimedProximity> sensed;  // a simulated robot's own proximity sensor
-  const auto start_at = start_time(a.start_at);
-  const agent::PacedFeedConfig paced{.rate = a.rate, .queue_capacity = a.queue, .start_at = start_at};
+// What the robot maps from: a simulated robot (which also senses its own
+// proximity events, into `sensed`, and sets the encounter's search radius to
+// its sensor's range), a log, or live ROS 2 topics.
+std::unique_ptr<agent::ScanFeed> make_feed(const AgentArgs& a, SwarmNet& net, const agent::PacedFeedConfig& paced,
+                                           agent::AgentOptions& o, std::vector<agent::TimedProximity>& sensed) {
   if (a.sim_seed) {
     SimSwarmRun sim = simulate_swarm_run({a.sim_robots, *a.sim_seed, a.world_seed, a.proximity_range, a.duration});
     o.swarm.encounter.locate.search_radius = a.proximity_range;
@@ -167,20 +167,31 @@ void run_agent(const AgentArgs& a) {
                    sim.streams[k].name, a.name);
     for (agent::TimedProximity& e : agent::proximity_schedule(sim.streams, sim.events))
       if (e.event.a == sim.streams[k].name || e.event.b == sim.streams[k].name) sensed.push_back(std::move(e));
-    feed = std::make_unique<agent::PacedFeed>(sim.streams[k].scans, sim.streams[k].clock, paced);
-  } else if (!a.log.empty()) {
-    AgentStream s = log_stream(a);
-    feed = std::make_unique<agent::PacedFeed>(std::move(s.scans), std::move(s.clock), paced);
-  } else {
-    net::LiveInputConfig live;
-    live.ns = a.ns;
-    live.scan_topic = a.scan_topic;
-    live.odom_topic = a.odom_topic;
-    live.odometry = a.tf_odometry ? net::OdometrySource::kTf : net::OdometrySource::kTopic;
-    live.queue_capacity = a.queue;
-    live.reliable = a.reliable_input;
-    feed = std::make_unique<LiveFeed>(net.ros(), live);
+    return std::make_unique<agent::PacedFeed>(sim.streams[k].scans, sim.streams[k].clock, paced);
   }
+  if (!a.log.empty()) {
+    AgentStream s = log_stream(a);
+    return std::make_unique<agent::PacedFeed>(std::move(s.scans), std::move(s.clock), paced);
+  }
+  net::LiveInputConfig live;
+  live.ns = a.ns;
+  live.scan_topic = a.scan_topic;
+  live.odom_topic = a.odom_topic;
+  live.odometry = a.tf_odometry ? net::OdometrySource::kTf : net::OdometrySource::kTopic;
+  live.queue_capacity = a.queue;
+  live.reliable = a.reliable_input;
+  return std::make_unique<LiveFeed>(net.ros(), live);
+}
+
+void run_agent(const AgentArgs& a) {
+  check(a);
+  agent::AgentOptions o = agent_options(a);
+  const StopOnSignal stop_on_signal;
+  SwarmNet net(a.net, a.name);
+  std::vector<agent::TimedProximity> sensed;  // a simulated robot's own proximity sensor
+  const auto start_at = start_time(a.start_at);
+  const agent::PacedFeedConfig paced{.rate = a.rate, .queue_capacity = a.queue, .start_at = start_at};
+  const std::unique_ptr<agent::ScanFeed> feed = make_feed(a, net, paced, o, sensed);
   std::unique_ptr<DdsOutputs> outputs;
   if (!a.no_ros_output) outputs = std::make_unique<DdsOutputs>(net.ros(), a.ns);
   agent::AgentRuntime runtime(o, *feed, net.link(), outputs.get());

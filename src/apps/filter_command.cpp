@@ -92,6 +92,37 @@ std::string decisions_csv(const std::vector<DecisionRow>& rows) {
   return csv;
 }
 
+// Every scan of `log` through `filter`, timed (the filter alone).
+struct Filtered {
+  std::vector<DecisionRow> rows;
+  std::vector<LaserScan> kept;
+  std::map<std::string, std::size_t> reasons;
+  double seconds = 0.0;
+};
+
+Filtered filter_scans(ScanFilter& filter, const SensorLog& log, bool no_odometry) {
+  Filtered f;
+  f.rows.reserve(log.scans.size());
+  std::chrono::steady_clock::duration filter_time{};
+  for (const LaserScan& scan : log.scans) {
+    const auto start = std::chrono::steady_clock::now();
+    ScanFilter::Decision d;
+    if (no_odometry) {
+      LaserScan blind = scan;
+      blind.odometry.reset();
+      d = filter.decide(blind);
+    } else {
+      d = filter.decide(scan);
+    }
+    filter_time += std::chrono::steady_clock::now() - start;
+    f.rows.push_back({scan.timestamp, d});
+    ++f.reasons[d.reason];
+    if (d.keep) f.kept.push_back(scan);
+  }
+  f.seconds = std::chrono::duration<double>(filter_time).count();
+  return f;
+}
+
 void run_filter(const FilterArgs& a) {
   check_output_file(a.out, "--out");  // before the (slow) read
   if (!a.decisions.empty()) check_output_file(a.decisions, "--decisions");
@@ -107,27 +138,10 @@ void run_filter(const FilterArgs& a) {
   for (const auto& w : log.warnings) spdlog::warn("{}", w);
   if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
 
-  std::vector<DecisionRow> rows;
-  rows.reserve(log.scans.size());
-  std::vector<LaserScan> kept;
-  std::map<std::string, std::size_t> reasons;
-  std::chrono::steady_clock::duration filter_time{};
-  for (const LaserScan& scan : log.scans) {
-    const auto start = std::chrono::steady_clock::now();
-    ScanFilter::Decision d;
-    if (a.no_odometry) {
-      LaserScan blind = scan;
-      blind.odometry.reset();
-      d = filter.decide(blind);
-    } else {
-      d = filter.decide(scan);
-    }
-    filter_time += std::chrono::steady_clock::now() - start;
-    rows.push_back({scan.timestamp, d});
-    ++reasons[d.reason];
-    if (d.keep) kept.push_back(scan);
-  }
-  const double filter_seconds = std::chrono::duration<double>(filter_time).count();
+  const Filtered f = filter_scans(filter, log, a.no_odometry);
+  const std::vector<DecisionRow>& rows = f.rows;
+  const std::vector<LaserScan>& kept = f.kept;
+  const double filter_seconds = f.seconds;
 
   const std::size_t read_count = log.scans.size();
   const double drop_ratio = static_cast<double>(filter.dropped()) / static_cast<double>(read_count);
@@ -155,7 +169,7 @@ void run_filter(const FilterArgs& a) {
   fmt::print("  scans read: {}, kept: {}, dropped: {}, drop ratio: {:.4f}\n", read_count, filter.kept(),
              filter.dropped(), drop_ratio);
   std::string why;
-  for (const auto& [reason, count] : reasons) why += fmt::format("{}{} {}", why.empty() ? "" : ", ", reason, count);
+  for (const auto& [reason, count] : f.reasons) why += fmt::format("{}{} {}", why.empty() ? "" : ", ", reason, count);
   fmt::print("  decisions: {}\n", why);
   fmt::print("  filter_seconds: {:.4f} ({:.1f} us per scan)\n", filter_seconds,
              1e6 * filter_seconds / static_cast<double>(read_count));
