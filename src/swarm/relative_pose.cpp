@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "common/errors.hpp"
+#include "grid/sampling.hpp"
 #include "matching/scan_scorer.hpp"
 
 namespace dsswarm {
@@ -59,17 +60,59 @@ struct Coarse {
   Pose2 pose;
 };
 
+// The coarse level's cell values (cell_value with unknown 0) over a box of
+// cells, dense: the exhaustive search reads each cell thousands of times,
+// and a tile lookup and mass decoding per read were most of its cost. Read
+// through the same bilinear weights, so the same values as
+// interpolated_occupancy to the bit.
+class DenseCells {
+ public:
+  // The cells a point within `reach` of `centre` can touch.
+  DenseCells(const DsGrid& grid, const Eigen::Vector2d& centre, double reach) : inv_res_(1.0 / grid.resolution()) {
+    lo_ = {floor_to_cell((centre.x() - reach) * inv_res_) - 2, floor_to_cell((centre.y() - reach) * inv_res_) - 2};
+    width_ = floor_to_cell((centre.x() + reach) * inv_res_) + 3 - lo_.x;
+    height_ = floor_to_cell((centre.y() + reach) * inv_res_) + 3 - lo_.y;
+    values_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x)
+        values_[index(x, y)] = cell_value(grid.packed_at({lo_.x + x, lo_.y + y}).mass(), 0.0f);
+  }
+  // The value at a world point, bilinear between cell centres (0 outside the box).
+  float at(double wx, double wy) const {
+    const BilinearPoint b = bilinear_point(wx, wy, inv_res_);
+    const int x = b.corner.x - lo_.x, y = b.corner.y - lo_.y;
+    if (x < 0 || y < 0 || x + 1 >= width_ || y + 1 >= height_) return 0.0f;
+    const float* row = &values_[index(x, y)];
+    const float* above = row + width_;
+    return b.interpolate(row[0], row[1], above[0], above[1]);
+  }
+
+ private:
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
+
+  double inv_res_;
+  CellIndex lo_;
+  int width_ = 0, height_ = 0;
+  std::vector<float> values_;
+};
+
 // Step 1: every heading × every lattice position within the radius, on the coarsest level.
 std::vector<Coarse> exhaustive_search(const DsGrid& grid, const std::vector<ScanPoint>& points,
                                       const Eigen::Vector2d& near, const RelativePoseConfig& config) {
   const std::size_t stride = std::max<std::size_t>(1, points.size() / static_cast<std::size_t>(config.coarse_points));
   std::vector<ScanPoint> subset;
   for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
-  double weight_sum = 0.0;
-  for (const ScanPoint& p : subset) weight_sum += p.weight;
+  double weight_sum = 0.0, farthest = 0.0;
+  for (const ScanPoint& p : subset) {
+    weight_sum += p.weight;
+    farthest = std::max(farthest, std::hypot(double(p.x), double(p.y)));
+  }
 
   const int steps_xy = static_cast<int>(std::floor(config.search_radius / config.coarse_step_xy));
   const int headings = std::max(1, static_cast<int>(std::lround(2.0 * std::numbers::pi / config.coarse_step_theta)));
+  const DenseCells cells(grid, near, steps_xy * config.coarse_step_xy + farthest);
   std::vector<Coarse> all;
   std::vector<Eigen::Vector2d> rotated(subset.size());
   for (int h = 0; h < headings; ++h) {
@@ -82,7 +125,7 @@ std::vector<Coarse> exhaustive_search(const DsGrid& grid, const std::vector<Scan
         const double px = near.x() + ix * config.coarse_step_xy, py = near.y() + iy * config.coarse_step_xy;
         double sum = 0.0;
         for (std::size_t i = 0; i < subset.size(); ++i)
-          sum += subset[i].weight * interpolated_occupancy(grid, px + rotated[i].x(), py + rotated[i].y(), 0.0f);
+          sum += subset[i].weight * cells.at(px + rotated[i].x(), py + rotated[i].y());
         all.push_back({static_cast<float>(weight_sum > 0.0 ? sum / weight_sum : 0.0), Pose2{px, py, theta}});
       }
   }
