@@ -69,6 +69,9 @@ std::vector<ScanPoint> BodyReader::points(const char* field) {
     p.weight = r_.f32(field);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.weight) || p.weight < 0.0f)
       fail(fmt::format("{}: a point is not finite or has a negative weight", field));
+    if (std::abs(p.x) > limits_.max_point_distance || std::abs(p.y) > limits_.max_point_distance)
+      fail(fmt::format("{}: a point ({}, {}) lies more than {} m from the robot", field, p.x, p.y,
+                       limits_.max_point_distance));
   }
   return out;
 }

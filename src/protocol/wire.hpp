@@ -33,6 +33,10 @@ class ProtocolError : public InputError {
 struct WireLimits {
   std::size_t max_message_bytes = 1 << 20;    // one message (a chunk carries at most ~this)
   std::size_t max_points = 20000;             // per point list of an offer
+  // m from the robot: a lidar sees a few hundred at most, surroundings reach
+  // 100 (encounter config); further is no scan, and a far point's cell index
+  // would overflow where the map is read.
+  double max_point_distance = 1000.0;
   std::size_t max_inventory = 1024;           // layers an offer may list
   std::size_t max_confirmations = 64;
   std::size_t max_text = 1024;                // a decline's reason

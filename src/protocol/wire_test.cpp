@@ -128,6 +128,9 @@ TEST(Wire, NonsenseValuesAreRefusedBeforeUse) {
   Offer inf_point = sample_offer();
   inf_point.points[0].x = std::numeric_limits<float>::infinity();
   EXPECT_NE(error_of(encode(with(inf_point))).find("not finite"), std::string::npos);
+  Offer far_point = sample_offer();
+  far_point.surroundings[0].y = -1e30f;
+  EXPECT_NE(error_of(encode(with(far_point))).find("more than 1000 m from the robot"), std::string::npos);
   Offer many = sample_offer();
   many.points.assign(30000, ScanPoint{});
   EXPECT_NE(error_of(encode(with(many))).find("at most 20000"), std::string::npos);

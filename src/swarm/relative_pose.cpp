@@ -67,22 +67,36 @@ struct Coarse {
 // interpolated_occupancy to the bit.
 class DenseCells {
  public:
-  // The cells a point within `reach` of `centre` can touch.
+  // The cells a point within `reach` of `centre` can touch, cut to the
+  // grid's bounds: beyond them every cell is vacuous (value 0), so the box
+  // stops two cells past them and a block of four that leaves it holds only
+  // vacuous cells. A scan point however far (another robot's, off the wire)
+  // costs no memory.
   DenseCells(const DsGrid& grid, const Eigen::Vector2d& centre, double reach) : inv_res_(1.0 / grid.resolution()) {
-    lo_ = {floor_to_cell((centre.x() - reach) * inv_res_) - 2, floor_to_cell((centre.y() - reach) * inv_res_) - 2};
-    width_ = floor_to_cell((centre.x() + reach) * inv_res_) + 3 - lo_.x;
-    height_ = floor_to_cell((centre.y() + reach) * inv_res_) + 3 - lo_.y;
+    CellIndex held_lo, held_hi;
+    grid.bounds(held_lo, held_hi);
+    const auto first = [&](double c, std::int32_t held) {
+      return floor_to_cell(std::max((c - reach) * inv_res_ - 2.0, static_cast<double>(held) - 2.0));
+    };
+    const auto last = [&](double c, std::int32_t held) {  // one past
+      return floor_to_cell(std::min((c + reach) * inv_res_ + 3.0, static_cast<double>(held) + 2.0));
+    };
+    lo_ = {first(centre.x(), held_lo.x), first(centre.y(), held_lo.y)};
+    width_ = std::max(0, last(centre.x(), held_hi.x) - lo_.x);
+    height_ = std::max(0, last(centre.y(), held_hi.y) - lo_.y);
     values_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
     for (int y = 0; y < height_; ++y)
       for (int x = 0; x < width_; ++x)
         values_[index(x, y)] = cell_value(grid.packed_at({lo_.x + x, lo_.y + y}).mass(), 0.0f);
   }
-  // The value at a world point, bilinear between cell centres (0 outside the box).
+  // The value at a world point, bilinear between cell centres (as
+  // bilinear_point places it); 0 where the block around it leaves the box.
   float at(double wx, double wy) const {
-    const BilinearPoint b = bilinear_point(wx, wy, inv_res_);
-    const int x = b.corner.x - lo_.x, y = b.corner.y - lo_.y;
-    if (x < 0 || y < 0 || x + 1 >= width_ || y + 1 >= height_) return 0.0f;
-    const float* row = &values_[index(x, y)];
+    const double gx = wx * inv_res_ - 0.5, gy = wy * inv_res_ - 0.5;
+    // Checked before the cell index is taken: a point however far is no overflow.
+    if (!(gx >= lo_.x && gx < lo_.x + width_ - 1 && gy >= lo_.y && gy < lo_.y + height_ - 1)) return 0.0f;
+    const BilinearPoint b = bilinear_cell_point(gx, gy);
+    const float* row = &values_[index(b.corner.x - lo_.x, b.corner.y - lo_.y)];
     const float* above = row + width_;
     return b.interpolate(row[0], row[1], above[0], above[1]);
   }

@@ -35,6 +35,25 @@ TEST(RelativePose, RecoversThePoseOfAScanWithAnyHeading) {
   }
 }
 
+// A point far beyond the map (a log's bogus range, say) reads as unknown and
+// costs nothing: the search's dense copy of the map stops at the map's edge.
+TEST(RelativePose, AFarPointInTheScanNeitherCostsMemoryNorMovesThePlacement) {
+  const World world = test::l_shaped_office();
+  const Pose2 a_frame{1.0, 1.0, 0.3};
+  Rng rng(11);
+  const MultiResMap map =
+      test::map_from(world, {{2.0, 1.5, 0.3}, {3.0, 2.5, 1.0}, {5.5, 2.0, 0.0}, {2.0, 5.0, 1.6}}, a_frame, rng);
+  const Pose2 a_pose = a_frame.inverse() * Pose2{3.0, 2.5, 1.0};
+  const Pose2 b_world{3.5, 2.0, 2.0};
+  const Pose2 truth = a_frame.inverse() * b_world;
+  std::vector<ScanPoint> points = test::scan_at(world, b_world, rng);
+  points.insert(points.begin(), ScanPoint{5.0e4f, -5.0e4f, 1.0f});  // the exhaustive search's subset starts here
+  const RelativePoseResult r = locate_scan(map, points, a_pose.translation(), RelativePoseConfig{}, 3);
+  EXPECT_NEAR(r.best.pose.x, truth.x, 0.05);
+  EXPECT_NEAR(r.best.pose.y, truth.y, 0.05);
+  EXPECT_NEAR(normalize_angle(r.best.pose.theta - truth.theta), 0.0, 1.0 * kDeg);
+}
+
 struct TwoRobots {
   MultiResMap map_a, map_b;
   EncounterView a, b;
