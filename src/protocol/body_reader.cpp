@@ -57,6 +57,8 @@ std::string BodyReader::text(const char* field, std::size_t max) {
 Pose2 BodyReader::pose(const char* field) {
   const double x = r_.f64(field), y = r_.f64(field), theta = r_.f64(field);
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta)) fail(fmt::format("{} is not finite", field));
+  if (std::abs(x) > limits_.max_coordinate || std::abs(y) > limits_.max_coordinate)
+    fail(fmt::format("{} ({}, {}) lies more than {} m from its frame's origin", field, x, y, limits_.max_coordinate));
   return {x, y, theta};
 }
 

@@ -37,6 +37,9 @@ struct WireLimits {
   // 100 (encounter config); further is no scan, and a far point's cell index
   // would overflow where the map is read.
   double max_point_distance = 1000.0;
+  // m from the map frame's origin, for any pose: a building-sized map stays
+  // far inside it, and cell indices computed from it cannot overflow.
+  double max_coordinate = 1.0e6;
   std::size_t max_inventory = 1024;           // layers an offer may list
   std::size_t max_confirmations = 64;
   std::size_t max_text = 1024;                // a decline's reason

@@ -128,6 +128,9 @@ TEST(Wire, NonsenseValuesAreRefusedBeforeUse) {
   Offer inf_point = sample_offer();
   inf_point.points[0].x = std::numeric_limits<float>::infinity();
   EXPECT_NE(error_of(encode(with(inf_point))).find("not finite"), std::string::npos);
+  Offer far_pose = sample_offer();
+  far_pose.pose.y = 3e9;
+  EXPECT_NE(error_of(encode(with(far_pose))).find("more than 1000000 m from its frame's origin"), std::string::npos);
   Offer far_point = sample_offer();
   far_point.surroundings[0].y = -1e30f;
   EXPECT_NE(error_of(encode(with(far_point))).find("more than 1000 m from the robot"), std::string::npos);
