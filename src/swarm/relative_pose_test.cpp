@@ -10,24 +10,29 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Robot A mapped the room from a few poses; robot B, somewhere within 3 m
-// and facing anywhere, takes one scan.
-TEST(RelativePose, RecoversThePoseOfAScanWithAnyHeading) {
-  const World world = test::l_shaped_office();
-  const Pose2 a_frame{1.0, 1.0, 0.3};
-  Rng rng(11);
-  const MultiResMap map =
+// Robot A mapped the room from a few poses (its frame at a_frame) and stands at a_pose.
+struct MappedOffice {
+  World world = test::l_shaped_office();
+  Pose2 a_frame{1.0, 1.0, 0.3};
+  Rng rng{11};  // goes on drawing the other robot's scans
+  MultiResMap map =
       test::map_from(world, {{2.0, 1.5, 0.3}, {3.0, 2.5, 1.0}, {5.5, 2.0, 0.0}, {2.0, 5.0, 1.6}}, a_frame, rng);
-  const Pose2 a_pose = a_frame.inverse() * Pose2{3.0, 2.5, 1.0};
+  Pose2 a_pose = a_frame.inverse() * Pose2{3.0, 2.5, 1.0};
+};
+
+// Robot B, somewhere within 3 m of robot A and facing anywhere, takes one scan.
+TEST(RelativePose, RecoversThePoseOfAScanWithAnyHeading) {
+  MappedOffice o;
   for (int trial = 0; trial < 6; ++trial) {
     Pose2 b_world;
     do {
-      b_world = {rng.uniform(0.6, 6.0), rng.uniform(0.6, 3.4), rng.uniform(-std::numbers::pi, std::numbers::pi)};
-    } while (!world.is_free(b_world.translation(), 0.3));
-    const Pose2 truth = a_frame.inverse() * b_world;
-    if ((truth.translation() - a_pose.translation()).norm() > 3.0) continue;
-    const RelativePoseResult r =
-        locate_scan(map, test::scan_at(world, b_world, rng), a_pose.translation(), RelativePoseConfig{}, 1 + trial);
+      b_world = {o.rng.uniform(0.6, 6.0), o.rng.uniform(0.6, 3.4),
+                 o.rng.uniform(-std::numbers::pi, std::numbers::pi)};
+    } while (!o.world.is_free(b_world.translation(), 0.3));
+    const Pose2 truth = o.a_frame.inverse() * b_world;
+    if ((truth.translation() - o.a_pose.translation()).norm() > 3.0) continue;
+    const RelativePoseResult r = locate_scan(o.map, test::scan_at(o.world, b_world, o.rng), o.a_pose.translation(),
+                                             RelativePoseConfig{}, 1 + trial);
     EXPECT_NEAR(r.best.pose.x, truth.x, 0.05) << "trial " << trial;
     EXPECT_NEAR(r.best.pose.y, truth.y, 0.05) << "trial " << trial;
     EXPECT_NEAR(normalize_angle(r.best.pose.theta - truth.theta), 0.0, 1.0 * kDeg) << "trial " << trial;
@@ -38,17 +43,12 @@ TEST(RelativePose, RecoversThePoseOfAScanWithAnyHeading) {
 // A point far beyond the map (a log's bogus range, say) reads as unknown and
 // costs nothing: the search's dense copy of the map stops at the map's edge.
 TEST(RelativePose, AFarPointInTheScanNeitherCostsMemoryNorMovesThePlacement) {
-  const World world = test::l_shaped_office();
-  const Pose2 a_frame{1.0, 1.0, 0.3};
-  Rng rng(11);
-  const MultiResMap map =
-      test::map_from(world, {{2.0, 1.5, 0.3}, {3.0, 2.5, 1.0}, {5.5, 2.0, 0.0}, {2.0, 5.0, 1.6}}, a_frame, rng);
-  const Pose2 a_pose = a_frame.inverse() * Pose2{3.0, 2.5, 1.0};
+  MappedOffice o;
   const Pose2 b_world{3.5, 2.0, 2.0};
-  const Pose2 truth = a_frame.inverse() * b_world;
-  std::vector<ScanPoint> points = test::scan_at(world, b_world, rng);
+  const Pose2 truth = o.a_frame.inverse() * b_world;
+  std::vector<ScanPoint> points = test::scan_at(o.world, b_world, o.rng);
   points.insert(points.begin(), ScanPoint{5.0e4f, -5.0e4f, 1.0f});  // the exhaustive search's subset starts here
-  const RelativePoseResult r = locate_scan(map, points, a_pose.translation(), RelativePoseConfig{}, 3);
+  const RelativePoseResult r = locate_scan(o.map, points, o.a_pose.translation(), RelativePoseConfig{}, 3);
   EXPECT_NEAR(r.best.pose.x, truth.x, 0.05);
   EXPECT_NEAR(r.best.pose.y, truth.y, 0.05);
   EXPECT_NEAR(normalize_angle(r.best.pose.theta - truth.theta), 0.0, 1.0 * kDeg);
