@@ -16,7 +16,8 @@
 #
 # A crash, sanitizer report, leak, hang (an input running over 10 s) or
 # out-of-memory (over 2 GB) stops its target, saves the input under
-# DIR/fuzz-artifacts/TARGET/ (crash-*, leak-*, timeout-*, oom-*) and makes the
+# DIR/fuzz-artifacts/TARGET/ (crash-*, leak-*, timeout-*, oom-*), prints the
+# end of the target's log (the report; a small input in Base64) and makes the
 # script exit 1. Reproduce with `DIR/fuzz/TARGET FILE`; every such input
 # becomes a unit test beside its parser. New inputs that reach new code go to
 # DIR/fuzz-corpus/TARGET (kept between runs, never committed); the committed
@@ -135,5 +136,12 @@ for t in "${targets[@]}"; do
     failed=1
   fi
   printf '%-18s %12s %16s %8s  %s\n' "$t" "${execs:-?}" "${corpus:-?}" "$crashes" "$result"
+done
+# A clean CI checkout keeps no artifacts: the report and the input (libFuzzer
+# prints small inputs in Base64) go to the output, to reproduce from there.
+for t in "${targets[@]}"; do
+  [ "$(cat "$logs/$t.rc")" = 0 ] && continue
+  echo "--- $t: the end of $logs/$t.log ---"
+  grep -v -E '^#[0-9]+[[:space:]]+(NEW|REDUCE|pulse|INITED)' "$logs/$t.log" | tail -60
 done
 exit $failed

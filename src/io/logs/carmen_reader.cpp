@@ -218,7 +218,7 @@ class CarmenParser {
     const std::size_t n = count_field(where, fields_[1], "num_readings");
     constexpr std::size_t kTrailing = 9;  // x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
     const std::size_t after = fields_.size() - 2;
-    if (after != n + kTrailing) {
+    if (n > after || after - n != kTrailing) {  // not n + kTrailing: a count near 2^64 wraps
       const std::size_t found = after < n ? after : after - std::min(after, kTrailing);
       where.fail(fmt::format("expected {} ranges, found {} ({} fields after num_readings; the record needs the {} "
                              "ranges then x y theta odom_x odom_y odom_theta timestamp host logger_timestamp)",
@@ -256,14 +256,14 @@ class CarmenParser {
     number_field(where, fields_[6], "accuracy");
     number_field(where, fields_[7], "remission_mode");
     const std::size_t n = count_field(where, fields_[8], "num_readings");
-    if (fields_.size() < kHeader + n + 1) {
+    if (n >= fields_.size() - kHeader) {  // not kHeader + n + 1: a count near 2^64 wraps
       where.fail(fmt::format("expected {} ranges then num_remissions, found {} fields after num_readings", n,
                              fields_.size() - kHeader));
     }
     const std::size_t k = count_field(where, fields_[kHeader + n], "num_remissions");
     constexpr std::size_t kTrailing = 14;  // 2 poses, tv rv forward side turn, timestamp host logger_timestamp
     const std::size_t after = fields_.size() - (kHeader + n + 1);
-    if (after != k + kTrailing) {
+    if (k > after || after - k != kTrailing) {
       where.fail(fmt::format("expected {} remissions then {} fields (laser pose, robot pose, tv rv forward_safety "
                              "side_safety turn_axis timestamp host logger_timestamp), found {} fields after "
                              "num_remissions",

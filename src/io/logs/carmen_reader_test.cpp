@@ -289,6 +289,30 @@ TEST(CarmenReader, NonNumericFieldsNameTheField) {
   EXPECT_NE(message.find(":1: ODOM: field 'timestamp'"), std::string::npos) << message;
 }
 
+// A count near 2^64 made "count + trailing fields" wrap to the number of
+// fields found, so the line passed its length check and asked for 2^64
+// ranges (found by the fuzzer).
+TEST(CarmenReader, ACountNear2To64IsAnErrorNotAnAllocation) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"FLASER 18446744073709551615 1 2 3 4 5 6 7 8\n", "expected 18446744073709551615 ranges, found 8"},
+      {"RLASER 18446744073709551614 1 2 3 4 5 6 7\n", "expected 18446744073709551614 ranges, found 7"},
+      {"ROBOTLASER1 0 0 1 0.1 10 0 0 18446744073709551608 1 2 3\n",
+       "expected 18446744073709551608 ranges then num_remissions, found 3"},
+      {"ROBOTLASER1 0 0 1 0.1 10 0 0 1 5 18446744073709551613 1 2 3 4 5 6 7 8 9 10 11 12 13 h 15\n",
+       "expected 18446744073709551613 remissions then 14 fields"},
+  };
+  for (const auto& [text, expected] : cases) {
+    std::string message;
+    try {
+      parse_carmen(text, "count.log", {});
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("count.log:1: "), std::string::npos) << text << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << text << message;
+  }
+}
+
 TEST(CarmenReader, MissingEmptyAndScanlessFiles) {
   const fs::path dir = scratch_dir("missing");
   std::string message = error_of(dir / "nope.log");
