@@ -139,6 +139,52 @@ nlohmann::json summary(const SwarmRunResult& run, const std::vector<EncounterTru
   return stats;
 }
 
+// Each robot's files (its own, unless the robot process wrote them; its
+// trajectory in the joint frame; the truth) and its entry in stats.json.
+nlohmann::json add_agents(OutputFiles& files, const std::filesystem::path& dir, const SwarmRunResult& run,
+                          const std::vector<std::optional<Pose2>>& frames, const SwarmTruth* truth,
+                          bool agent_files) {
+  const std::vector<AgentTruthScore> agent_scores = truth ? score_agents(run, *truth) : std::vector<AgentTruthScore>{};
+  nlohmann::json agents = nlohmann::json::array();
+  for (std::size_t i = 0; i < run.agents.size(); ++i) {
+    const SwarmAgentResult& a = run.agents[i];
+    const std::filesystem::path adir = dir / "agents" / a.name;
+    if (agent_files) add_agent_files(files, adir, a, static_cast<int>(i));
+    if (frames[i]) {
+      Trajectory joint = a.trajectory;
+      for (auto& p : joint) p.pose = *frames[i] * p.pose;
+      const std::filesystem::path path = dir / "joint" / (a.name + ".tum");
+      files.add(path, format_tum(path, joint));
+    }
+    nlohmann::json j = agent_entry(a, frames[i].has_value());
+    if (truth && !a.trajectory.empty() && !truth->world_poses[i].empty()) {
+      files.add(adir / "ground_truth.tum", format_tum(adir / "ground_truth.tum", truth->world_poses[i]));
+      j["ate_rmse"] = agent_scores[i].ate_rmse;
+      j["coverage"] = agent_scores[i].coverage;
+    }
+    agents.push_back(std::move(j));
+  }
+  return agents;
+}
+
+// encounters.json, each scored against the truth when there is one: the scores.
+std::vector<EncounterTruthScore> add_encounters(OutputFiles& files, const std::filesystem::path& dir,
+                                                const SwarmRunResult& run, const SwarmTruth* truth) {
+  std::vector<EncounterTruthScore> scores;
+  if (truth) {
+    const EncounterScorer scorer(run, *truth);
+    for (const EncounterRecord& r : run.encounters) scores.push_back(scorer.score(r));
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t k = 0; k < run.encounters.size(); ++k) {
+    nlohmann::json e = encounter_entry(run.encounters[k]);
+    if (truth) e.update(to_json(scores[k]));
+    list.push_back(std::move(e));
+  }
+  files.add(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
+  return scores;
+}
+
 }  // namespace
 
 double run_swarm_session(SwarmSession& session, const std::string& label) {
@@ -196,42 +242,10 @@ nlohmann::json write_swarm_outputs(const std::filesystem::path& dir, const Swarm
   OutputFiles files;
   std::vector<std::optional<Pose2>> frames;
   for (std::size_t i = 0; i < run.agents.size(); ++i) frames.push_back(frame_in_reference(run, i));
-  const std::vector<AgentTruthScore> agent_scores = truth ? score_agents(run, *truth) : std::vector<AgentTruthScore>{};
-
-  nlohmann::json agents = nlohmann::json::array();
+  nlohmann::json agents = add_agents(files, dir, run, frames, truth, options.agent_files);
   std::size_t total_scans = 0;
-  for (std::size_t i = 0; i < run.agents.size(); ++i) {
-    const SwarmAgentResult& a = run.agents[i];
-    const std::filesystem::path adir = dir / "agents" / a.name;
-    if (options.agent_files) add_agent_files(files, adir, a, static_cast<int>(i));
-    if (frames[i]) {
-      Trajectory joint = a.trajectory;
-      for (auto& p : joint) p.pose = *frames[i] * p.pose;
-      const std::filesystem::path path = dir / "joint" / (a.name + ".tum");
-      files.add(path, format_tum(path, joint));
-    }
-    nlohmann::json j = agent_entry(a, frames[i].has_value());
-    if (truth && !a.trajectory.empty() && !truth->world_poses[i].empty()) {
-      files.add(adir / "ground_truth.tum", format_tum(adir / "ground_truth.tum", truth->world_poses[i]));
-      j["ate_rmse"] = agent_scores[i].ate_rmse;
-      j["coverage"] = agent_scores[i].coverage;
-    }
-    total_scans += a.trajectory.size();
-    agents.push_back(std::move(j));
-  }
-
-  std::vector<EncounterTruthScore> scores;
-  if (truth) {
-    const EncounterScorer scorer(run, *truth);
-    for (const EncounterRecord& r : run.encounters) scores.push_back(scorer.score(r));
-  }
-  nlohmann::json list = nlohmann::json::array();
-  for (std::size_t k = 0; k < run.encounters.size(); ++k) {
-    nlohmann::json e = encounter_entry(run.encounters[k]);
-    if (truth) e.update(to_json(scores[k]));
-    list.push_back(std::move(e));
-  }
-  files.add(dir / "encounters.json", nlohmann::json{{"encounters", list}}.dump(2) + "\n");
+  for (const SwarmAgentResult& a : run.agents) total_scans += a.trajectory.size();
+  const std::vector<EncounterTruthScore> scores = add_encounters(files, dir, run, truth);
   if (!run.agents.empty()) {
     const GridRaster first_merged = run.agents.front().working_map->finest().to_raster();
     if (first_merged.width > 0)

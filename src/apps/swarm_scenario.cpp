@@ -222,6 +222,57 @@ std::optional<double> log_time_at(const AgentStream& s, double t) {
   return s.scans[static_cast<std::size_t>(after - s.clock.begin()) - 1].timestamp;
 }
 
+// An encounter's session time, from 'time' or from 'log_times' (then
+// `b_log_time` is b's, to check against where b is at that time).
+double encounter_time(const ScenarioFile& f, const YAML::Node& node, const std::string& context, const AgentStream& a,
+                      const AgentStream& b, std::optional<double>& b_log_time) {
+  const YAML::Node time = node["time"];
+  const YAML::Node log_times = node["log_times"];
+  if (time && log_times) f.fail(log_times, context, "log_times", "give either 'time' or 'log_times', not both");
+  if (!time && !log_times) f.fail_missing(node, context, "time", "or 'log_times'");
+  if (time) return f.non_negative(time, context, "time");
+  if (!log_times.IsSequence() || log_times.size() != 2) {
+    f.fail(log_times, context, "log_times", "expected two log times: [time of a, time of b]");
+  }
+  const double ta = f.number(log_times[0], context, "log_times");
+  const double tb = f.number(log_times[1], context, "log_times");
+  const auto ia = scan_at_log_time(a, ta);
+  if (!ia) {
+    f.fail(log_times[0], context, "log_times",
+           fmt::format("{:.6f} is outside the segment of agent {} (log times {})", ta, a.name, span_text(a)));
+  }
+  if (!scan_at_log_time(b, tb)) {
+    f.fail(log_times[1], context, "log_times",
+           fmt::format("{:.6f} is outside the segment of agent {} (log times {})", tb, b.name, span_text(b)));
+  }
+  b_log_time = tb;
+  return a.clock[*ia];
+}
+
+// Encounter `k` at a time one of its agents is not running, or (log_times)
+// where b is far from the log time given for it: a warning each.
+void warn_about_timing(std::size_t k, const EncounterEvent& e, const AgentStream& a, const AgentStream& b,
+                       const std::optional<double>& b_log_time, std::vector<std::string>& warnings) {
+  for (const AgentStream* s : {&a, &b}) {
+    if (e.time < s->clock.front()) {
+      warnings.push_back(fmt::format("encounter {} at session time {:.3f} s: agent {} starts only at {:.3f} s, so "
+                                     "the encounter will be skipped",
+                                     k, e.time, s->name, s->clock.front()));
+    } else if (e.time > s->clock.back()) {
+      warnings.push_back(fmt::format("encounter {} at session time {:.3f} s: agent {} finished at {:.3f} s and "
+                                     "meets with its final state",
+                                     k, e.time, s->name, s->clock.back()));
+    }
+  }
+  if (!b_log_time) return;
+  const auto reached = log_time_at(b, e.time);
+  if (reached && std::abs(*reached - *b_log_time) > kLogTimeMismatchWarning) {
+    warnings.push_back(fmt::format("encounter {} at session time {:.3f} s: agent {} is at log time {:.3f}, "
+                                   "{:.1f} s from the given {:.3f}",
+                                   k, e.time, b.name, *reached, *reached - *b_log_time, *b_log_time));
+  }
+}
+
 std::vector<EncounterEvent> load_encounters(const ScenarioFile& f, const YAML::Node& root, const LoadedAgents& agents,
                                             std::vector<std::string>& warnings) {
   std::vector<EncounterEvent> events;
@@ -241,52 +292,9 @@ std::vector<EncounterEvent> load_encounters(const ScenarioFile& f, const YAML::N
     if (e.a == e.b) f.fail(names, context, "agents", fmt::format("'{}' cannot meet itself", agents.specs[e.a].name));
     const AgentStream& a = agents.streams[e.a];
     const AgentStream& b = agents.streams[e.b];
-
-    const YAML::Node time = node["time"];
-    const YAML::Node log_times = node["log_times"];
-    if (time && log_times) f.fail(log_times, context, "log_times", "give either 'time' or 'log_times', not both");
-    if (!time && !log_times) f.fail_missing(node, context, "time", "or 'log_times'");
     std::optional<double> b_log_time;
-    if (time) {
-      e.time = f.non_negative(time, context, "time");
-    } else {
-      if (!log_times.IsSequence() || log_times.size() != 2) {
-        f.fail(log_times, context, "log_times", "expected two log times: [time of a, time of b]");
-      }
-      const double ta = f.number(log_times[0], context, "log_times");
-      const double tb = f.number(log_times[1], context, "log_times");
-      const auto ia = scan_at_log_time(a, ta);
-      if (!ia) {
-        f.fail(log_times[0], context, "log_times",
-               fmt::format("{:.6f} is outside the segment of agent {} (log times {})", ta, a.name, span_text(a)));
-      }
-      if (!scan_at_log_time(b, tb)) {
-        f.fail(log_times[1], context, "log_times",
-               fmt::format("{:.6f} is outside the segment of agent {} (log times {})", tb, b.name, span_text(b)));
-      }
-      e.time = a.clock[*ia];
-      b_log_time = tb;
-    }
-
-    for (const AgentStream* s : {&a, &b}) {
-      if (e.time < s->clock.front()) {
-        warnings.push_back(fmt::format("encounter {} at session time {:.3f} s: agent {} starts only at {:.3f} s, so "
-                                       "the encounter will be skipped",
-                                       k, e.time, s->name, s->clock.front()));
-      } else if (e.time > s->clock.back()) {
-        warnings.push_back(fmt::format("encounter {} at session time {:.3f} s: agent {} finished at {:.3f} s and "
-                                       "meets with its final state",
-                                       k, e.time, s->name, s->clock.back()));
-      }
-    }
-    if (b_log_time) {
-      const auto reached = log_time_at(b, e.time);
-      if (reached && std::abs(*reached - *b_log_time) > kLogTimeMismatchWarning) {
-        warnings.push_back(fmt::format("encounter {} at session time {:.3f} s: agent {} is at log time {:.3f}, "
-                                       "{:.1f} s from the given {:.3f}",
-                                       k, e.time, b.name, *reached, *reached - *b_log_time, *b_log_time));
-      }
-    }
+    e.time = encounter_time(f, node, context, a, b, b_log_time);
+    warn_about_timing(k, e, a, b, b_log_time, warnings);
     events.push_back(e);
   }
   return events;

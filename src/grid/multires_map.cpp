@@ -190,6 +190,55 @@ void pass_beams(std::span<MultiResMap* const> maps, int level, const Eigen::Vect
   }
 }
 
+// Neighbouring returns closer than `surface_gap` lie on one surface: the
+// cells between them get (weak) occupied evidence too. Otherwise a wall seen
+// at a grazing angle is a dotted line whose dots sit exactly where this
+// viewpoint's beams ended, and the next scan, taken a few centimetres
+// further on, fits the map best by pretending not to have moved.
+void join_surfaces(LevelWriter& writer, const DsGrid& grid, const MapConfig& config, const Eigen::Vector2d& origin,
+                   const std::vector<Eigen::Vector2d>& hits) {
+  const EvidenceModel& ev = config.evidence;
+  const DsMass between_hits{ev.hit().occupied * config.surface_mass_factor, 0.0f};
+  for (std::size_t i = 1; i < hits.size(); ++i) {
+    const Eigen::Vector2d segment = hits[i] - hits[i - 1];
+    const double length = segment.norm();
+    if (length > config.surface_gap || length == 0.0) continue;
+    // A segment running almost along the beams is a depth jump (a chair
+    // leg in front of a wall), not a surface: joining it would draw a
+    // phantom wall towards the robot.
+    const Eigen::Vector2d beam = (0.5 * (hits[i] + hits[i - 1]) - origin).normalized();
+    if (std::abs(beam.dot(segment) / length) > config.surface_max_cos) continue;
+    const CellIndex end = grid.cell_of(hits[i]);
+    traverse_ray(hits[i - 1], hits[i], grid.resolution(), [&](CellIndex c) {
+      if (c == end) return;
+      writer.apply(c, [&](const DsMass& m) { return ev.update(m, between_hits); });
+    });
+  }
+}
+
+// The hits' occupied evidence, on their cells or (`splat`) spread over the
+// four nearest.
+void write_hits(LevelWriter& writer, const DsGrid& grid, const EvidenceModel& ev,
+                const std::vector<Eigen::Vector2d>& hits, bool splat) {
+  const DsMass hit = ev.hit();
+  HitRuns runs(writer, ev);
+  for (const Eigen::Vector2d& h : hits) {
+    if (!splat) {
+      runs.add(grid.cell_of(h), {hit.occupied, 0.0f, 0.0f, 0.0f});
+      continue;
+    }
+    // Bilinear weights: the scorer reads cells back with bilinear
+    // interpolation, so a hit seen through both is a tent centred exactly on
+    // its point: coarse cells no longer pull scans towards their centres (a
+    // bias of up to half a cell, the same for every wall of one orientation).
+    const BilinearPoint b = bilinear_point(h.x(), h.y(), 1.0 / grid.resolution());
+    std::array<float, 4> shares = b.weights();
+    for (float& w : shares) w *= hit.occupied;
+    runs.add(b.corner, shares);
+  }
+  runs.flush();
+}
+
 }  // namespace
 
 void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& robot_pose, const Pose2& laser_in_base,
@@ -206,8 +255,6 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
   const PointTransform to_world(robot_pose);
   for (const ScanPoint& p : points) hits.push_back(to_world(p.x, p.y));
 
-  const EvidenceModel& ev = config.evidence;
-  const DsMass hit = ev.hit();
   const PackedMass fixed_point = maps.front()->pass_fixed_point_;
   const std::uint16_t* passed_free = maps.front()->passed_free_->data();
   for (std::size_t level = 0; level < maps.front()->grids_.size(); ++level) {
@@ -228,47 +275,8 @@ void MultiResMap::insert_scan(std::span<MultiResMap* const> maps, const Pose2& r
           pass_beams<1>(maps.subspan(k, 1), l, origin, hits, margin, passed_free, fixed_point);
     }
     const bool splat = level > 0 || config.splat_fine_hits;
-    if (!splat && config.surface_gap > 0.0) {
-      // Neighbouring returns closer than `surface_gap` lie on one surface:
-      // mark the cells between them as (weakly) occupied too. Otherwise a
-      // wall seen at a grazing angle is a dotted line whose dots sit exactly
-      // where this viewpoint's beams ended, and the next scan, taken a few
-      // centimetres further on, fits the map best by pretending not to have
-      // moved.
-      const DsMass between_hits{hit.occupied * config.surface_mass_factor, 0.0f};
-      for (std::size_t i = 1; i < hits.size(); ++i) {
-        const Eigen::Vector2d segment = hits[i] - hits[i - 1];
-        const double length = segment.norm();
-        if (length > config.surface_gap || length == 0.0) continue;
-        // A segment running almost along the beams is a depth jump (a chair
-        // leg in front of a wall), not a surface: joining it would draw a
-        // phantom wall towards the robot.
-        const Eigen::Vector2d beam = (0.5 * (hits[i] + hits[i - 1]) - origin).normalized();
-        if (std::abs(beam.dot(segment) / length) > config.surface_max_cos) continue;
-        const CellIndex end = grid.cell_of(hits[i]);
-        traverse_ray(hits[i - 1], hits[i], grid.resolution(), [&](CellIndex c) {
-          if (c == end) return;
-          writer.apply(c, [&](const DsMass& m) { return ev.update(m, between_hits); });
-        });
-      }
-    }
-    HitRuns runs(writer, ev);
-    for (const Eigen::Vector2d& h : hits) {
-      if (!splat) {
-        runs.add(grid.cell_of(h), {hit.occupied, 0.0f, 0.0f, 0.0f});
-        continue;
-      }
-      // Spread the hit over the four nearest cells with bilinear weights. The
-      // scorer reads cells back with bilinear interpolation, so a hit seen
-      // through both is a tent centred exactly on its point: coarse cells no
-      // longer pull scans towards their centres (a bias of up to half a cell,
-      // the same for every wall of one orientation).
-      const BilinearPoint b = bilinear_point(h.x(), h.y(), 1.0 / grid.resolution());
-      std::array<float, 4> shares = b.weights();
-      for (float& w : shares) w *= hit.occupied;
-      runs.add(b.corner, shares);
-    }
-    runs.flush();
+    if (!splat && config.surface_gap > 0.0) join_surfaces(writer, grid, config, origin, hits);
+    write_hits(writer, grid, config.evidence, hits, splat);
   }
 }
 

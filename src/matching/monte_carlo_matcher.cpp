@@ -121,6 +121,7 @@ struct Polish {
 
 }  // namespace matcher_detail
 
+using matcher_detail::MotionPrior;
 using matcher_detail::Search;
 using matcher_detail::Polish;
 
@@ -231,41 +232,49 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   const int fine_budget = levels == 1 ? config_.evaluations : config_.evaluations / 2;
   const int coarse_budget = levels > 1 ? (config_.evaluations - fine_budget) / (levels - 1) : 0;
 
-  const matcher_detail::MotionPrior motion{prior, config_.prior_weight, config_.prior_sigma_xy, config_.prior_sigma_theta};
-  Pose2 coarse_best = prior;
-  double sigma_xy = config_.sigma_xy, sigma_th = config_.sigma_theta;
-  for (int level = levels - 1; level >= 1; --level) {
-    const auto stride = static_cast<std::size_t>(config_.coarse_stride) << std::min(level - 1, 1);
-    const ScanScorer scorer(map.level(level), *points.level[static_cast<std::size_t>(level)], stride, config_.unknown_value);
-    Search search{scorer, coarse_budget, motion};
-    double score = search.score(coarse_best);
-    search_level(search, level, coarse_best, score, sigma_xy, sigma_th);
-    result.evaluations += search.used;
-    // The next (finer) level starts no narrower than its own cell size.
-    sigma_xy = std::max(sigma_xy, map.level(level - 1).resolution());
-    sigma_th = std::max(sigma_th, config_.sigma_theta * 0.25);
-  }
+  const MotionPrior motion{prior, config_.prior_weight, config_.prior_sigma_xy, config_.prior_sigma_theta};
+  FineStart coarse{prior, config_.sigma_xy, config_.sigma_theta};
+  search_coarse(map, points, motion, coarse_budget, coarse, result.evaluations);
 
   // The finest level searches from the coarse answer and, when it differs,
   // from the prior too (half the budget each). The coarse levels can lead
   // astray; and the prior often sits on a small local maximum of its own (the
   // last scan's viewpoint) that only a search from elsewhere climbs past.
   const DsGrid& fine = map.finest();
-  const Pose2 d = between(prior, coarse_best);
+  const Pose2 d = between(prior, coarse.pose);
   const bool two_starts = levels > 1 && (std::hypot(d.x, d.y) > fine.resolution() * 0.5 ||
                                          std::abs(d.theta) > config_.polish_step_theta);
-  struct Start {
-    Pose2 pose;
-    double sigma_xy, sigma_th;
-  };
-  std::vector<Start> starts{{coarse_best, sigma_xy, sigma_th}};
+  std::vector<FineStart> starts{coarse};
   if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
-  const int per_start = fine_budget / static_cast<int>(starts.size());
-  const std::vector<ScanPoint>& fine_points = *points.level.front();
-  const ScanScorer fine_scorer(fine, fine_points, 1, config_.unknown_value);
+  const ScanScorer fine_scorer(fine, *points.level.front(), 1, config_.unknown_value);
+  result.pose = search_fine(fine_scorer, *points.level.front(), motion, starts, fine_budget, result.evaluations);
+  result.score = fine_scorer.score(result.pose);  // without the penalty
+  result.prior_score = fine_scorer.score(prior);
+  return result;
+}
+
+void MonteCarloMatcher::search_coarse(const MultiResMap& map, const LevelPoints& points, const MotionPrior& motion,
+                                      int budget, FineStart& best, int& evaluations) {
+  for (int level = map.levels() - 1; level >= 1; --level) {
+    const auto stride = static_cast<std::size_t>(config_.coarse_stride) << std::min(level - 1, 1);
+    const ScanScorer scorer(map.level(level), *points.level[static_cast<std::size_t>(level)], stride, config_.unknown_value);
+    Search search{scorer, budget, motion};
+    double score = search.score(best.pose);
+    search_level(search, level, best.pose, score, best.sigma_xy, best.sigma_th);
+    evaluations += search.used;
+    // The next (finer) level starts no narrower than its own cell size.
+    best.sigma_xy = std::max(best.sigma_xy, map.level(level - 1).resolution());
+    best.sigma_th = std::max(best.sigma_th, config_.sigma_theta * 0.25);
+  }
+}
+
+Pose2 MonteCarloMatcher::search_fine(const ScanScorer& fine_scorer, const std::vector<ScanPoint>& fine_points,
+                                     const MotionPrior& motion, std::vector<FineStart> starts, int budget,
+                                     int& evaluations) {
+  const int per_start = budget / static_cast<int>(starts.size());
   const auto stride = static_cast<std::size_t>(config_.fine_search_stride);
   const std::optional<ScanScorer> sampler =
-      stride > 1 ? std::optional<ScanScorer>(std::in_place, fine, fine_points, stride, config_.unknown_value)
+      stride > 1 ? std::optional<ScanScorer>(std::in_place, fine_scorer.grid(), fine_points, stride, config_.unknown_value)
                  : std::nullopt;
   // Each start's random phase, then their polishes race: each gets a few
   // rounds, then the leader finishes alone with what its start has left
@@ -276,18 +285,18 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
     int left;  // evaluations of its start's budget not yet spent
   };
   std::vector<Racer> racers;
-  for (Start& start : starts) {
+  for (FineStart& start : starts) {
     Search search{fine_scorer, per_start, motion, sampler ? &*sampler : nullptr};
     double score = search.score(start.pose);
     random_phase(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
-    result.evaluations += search.used;
-    racers.push_back({polish_from(start.pose, score, fine, 0), per_start - search.used});
+    evaluations += search.used;
+    racers.push_back({polish_from(start.pose, score, fine_scorer.grid(), 0), per_start - search.used});
   }
-  const auto run = [&](Racer& racer, int budget) {
-    Search search{fine_scorer, std::min(budget, racer.left), motion};
+  const auto run = [&](Racer& racer, int run_budget) {
+    Search search{fine_scorer, std::min(run_budget, racer.left), motion};
     racer.polish.run(search);
     racer.left -= search.used;
-    result.evaluations += search.used;
+    evaluations += search.used;
   };
   if (racers.size() > 1)
     for (Racer& racer : racers) run(racer, config_.polish_heat_evaluations);
@@ -295,10 +304,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
     return a.polish.best_score < b.polish.best_score;
   });
   run(leader, leader.left);
-  result.pose = leader.polish.best;
-  result.score = fine_scorer.score(result.pose);  // without the penalty
-  result.prior_score = fine_scorer.score(prior);
-  return result;
+  return leader.polish.best;
 }
 
 }  // namespace dsswarm
