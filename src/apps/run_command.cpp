@@ -47,6 +47,29 @@ void print_summary(const RunResult& r, const std::string& out) {
              r.wall_seconds, r.wall_seconds > 0 ? static_cast<double>(r.scans_read) / r.wall_seconds : 0.0, out);
 }
 
+// The log as the flags say to read it, its warnings logged.
+SensorLog read_run_log(const RunArgs& a, const std::optional<Pose2>& laser_offset, double& read_seconds) {
+  LogReadOptions read;
+  read.scan_topic = a.scan_topic;
+  read.odom_topic = a.odom_topic;
+  read.use_tf_odometry = a.tf_odometry;
+  read.odom_topic_named = a.odom_topic_named;
+  if (a.beams == "classic") read.carmen.beams = CarmenOptions::BeamConvention::Classic;
+  if (a.beams == "span180") read.carmen.beams = CarmenOptions::BeamConvention::Span180;
+  read.carmen.laser_offset = laser_offset;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  SensorLog log = read_log(a.log, read);
+  read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (laser_offset)  // bags too: the flag overrides whatever the log says
+    for (auto& s : log.scans) s.laser_offset = *laser_offset;
+  for (const auto& w : log.warnings) spdlog::warn("{}", w);
+  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  require_returns(log);
+  if (a.max_scans > 0 && log.scans.size() > a.max_scans) log.scans.resize(a.max_scans);
+  return log;
+}
+
 void run(const RunArgs& a) {
   check_output_directory(a.out, "--out");  // output, config and map-file errors before any work
   if (!a.save_map.empty()) check_output_file(a.save_map, "--save-map");
@@ -62,24 +85,8 @@ void run(const RunArgs& a) {
   std::optional<Pose2> start_pose, laser_offset;
   if (!a.start_pose.empty()) start_pose.emplace(pose_option(a.start_pose, "--start-pose"));
   if (!a.laser_offset.empty()) laser_offset.emplace(pose_option(a.laser_offset, "--laser-offset"));
-  LogReadOptions read;
-  read.scan_topic = a.scan_topic;
-  read.odom_topic = a.odom_topic;
-  read.use_tf_odometry = a.tf_odometry;
-  read.odom_topic_named = a.odom_topic_named;
-  if (a.beams == "classic") read.carmen.beams = CarmenOptions::BeamConvention::Classic;
-  if (a.beams == "span180") read.carmen.beams = CarmenOptions::BeamConvention::Span180;
-  read.carmen.laser_offset = laser_offset;
-
-  const auto t0 = std::chrono::steady_clock::now();
-  SensorLog log = read_log(a.log, read);
-  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (laser_offset)  // bags too: the flag overrides whatever the log says
-    for (auto& s : log.scans) s.laser_offset = *laser_offset;
-  for (const auto& w : log.warnings) spdlog::warn("{}", w);
-  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
-  require_returns(log);
-  if (a.max_scans > 0 && log.scans.size() > a.max_scans) log.scans.resize(a.max_scans);
+  double read_seconds = 0.0;
+  SensorLog log = read_run_log(a, laser_offset, read_seconds);
 
   // A loaded map is in the frame of the run that saved it, which began at its
   // first scan's odometry pose: the same log (or one recorded from the same

@@ -47,6 +47,37 @@ WorldConfig swarm_world_config(int robots) {
   return config;
 }
 
+namespace {
+
+// Robot `r`'s log along its path (poses at every lidar step): odometry and
+// scans from its own random streams.
+SimulatedRun record_robot(const World& world, const DrivenPath& path, const SwarmSimConfig& config,
+                          std::size_t r, const std::string& name) {
+  const std::size_t steps = path.poses.size();
+  const std::uint64_t robot_seed = stream_seed(config.seed, 1 + r);
+  Rng odometry_rng(stream_seed(robot_seed, 1));
+  Rng lidar_rng(stream_seed(robot_seed, 2));
+  const std::vector<Pose2> odometry = simulate_odometry(path.poses, config.robot, odometry_rng);
+
+  SimulatedRun run;
+  run.log.source = "simulated swarm, " + name + " of " + std::to_string(config.robots) + " (world seed " +
+                   std::to_string(config.world.seed) + ", swarm seed " + std::to_string(config.seed) + ")";
+  if (!path.reached_goal) run.log.warnings.push_back(name + " ran out of time before its parking spot");
+  run.log.scans.reserve(steps);
+  run.ground_truth.reserve(steps);
+  for (std::size_t k = 0; k < steps; ++k) {
+    LaserScan scan = simulate_scan(world, path.poses[k] * config.robot.laser_offset, config.lidar, lidar_rng);
+    scan.timestamp = static_cast<double>(k) / config.lidar.rate_hz;
+    scan.odometry = odometry[k];
+    scan.laser_offset = config.robot.laser_offset;
+    run.ground_truth.emplace_back(scan.timestamp, path.poses[k]);
+    run.log.scans.push_back(std::move(scan));
+  }
+  return run;
+}
+
+}  // namespace
+
 SimulatedSwarm simulate_swarm(const SwarmSimConfig& config) {
   validate(config);
   SimulatedSwarm swarm{generate_world(config.world), {}, {}, {}, {}, {}};
@@ -80,32 +111,10 @@ SimulatedSwarm simulate_swarm(const SwarmSimConfig& config) {
   swarm.rendezvous_area = swarm.rendezvous_area.expanded(0.5);
 
   for (std::size_t r = 0; r < robots; ++r) {
-    DrivenPath& path = paths[r];
-    swarm.arrival_times.push_back(static_cast<double>(path.poses.size() - 1) / config.lidar.rate_hz);
-    path.poses.resize(steps, path.poses.back());  // parked: standing still, odometry too
-
-    const std::uint64_t robot_seed = stream_seed(config.seed, 1 + r);
-    Rng odometry_rng(stream_seed(robot_seed, 1));
-    Rng lidar_rng(stream_seed(robot_seed, 2));
-    const std::vector<Pose2> odometry = simulate_odometry(path.poses, config.robot, odometry_rng);
-
+    swarm.arrival_times.push_back(static_cast<double>(paths[r].poses.size() - 1) / config.lidar.rate_hz);
+    paths[r].poses.resize(steps, paths[r].poses.back());  // parked: standing still, odometry too
     swarm.names.push_back("robot" + std::to_string(r + 1));
-    SimulatedRun run;
-    run.log.source = "simulated swarm, " + swarm.names.back() + " of " + std::to_string(robots) + " (world seed " +
-                     std::to_string(config.world.seed) + ", swarm seed " + std::to_string(config.seed) + ")";
-    if (!path.reached_goal)
-      run.log.warnings.push_back(swarm.names.back() + " ran out of time before its parking spot");
-    run.log.scans.reserve(steps);
-    run.ground_truth.reserve(steps);
-    for (std::size_t k = 0; k < steps; ++k) {
-      LaserScan scan = simulate_scan(world, path.poses[k] * config.robot.laser_offset, config.lidar, lidar_rng);
-      scan.timestamp = static_cast<double>(k) / config.lidar.rate_hz;
-      scan.odometry = odometry[k];
-      scan.laser_offset = config.robot.laser_offset;
-      run.ground_truth.emplace_back(scan.timestamp, path.poses[k]);
-      run.log.scans.push_back(std::move(scan));
-    }
-    swarm.runs.push_back(std::move(run));
+    swarm.runs.push_back(record_robot(world, paths[r], config, r, swarm.names.back()));
   }
   return swarm;
 }

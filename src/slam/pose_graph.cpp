@@ -77,6 +77,24 @@ namespace {
 
 enum class Part { all, own, frames };
 
+// Nodes only meet submaps and frames: eliminated first, they leave a small
+// system in those. Said outright, since Ceres otherwise searches the graph
+// for an independent set on every solve (a third of a solve's time).
+ceres::Solver::Options solver_options(const ceres::Problem& problem, Part part, std::vector<Block>& nodes,
+                                      std::vector<Block>& submaps, std::vector<Block>& frames) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_SCHUR;
+  if (part == Part::frames) return options;
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (Block& b : nodes)
+    if (problem.HasParameterBlock(b.data())) ordering->AddElementToGroup(b.data(), 0);
+  for (std::vector<Block>* blocks : {&submaps, &frames})
+    for (Block& b : *blocks)
+      if (problem.HasParameterBlock(b.data())) ordering->AddElementToGroup(b.data(), 1);
+  options.linear_solver_ordering = ordering;
+  return options;
+}
+
 // Solves for the poses the constraints of `part` reach: all of them; this
 // robot's own (no foreign constraints); or the frames alone, nodes held.
 OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part part) {
@@ -110,20 +128,7 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
     if (problem.HasParameterBlock(fixed)) problem.SetParameterBlockConstant(fixed);
   }
 
-  ceres::Solver::Options options;
-  // Nodes only meet submaps and frames: eliminated first, they leave a small
-  // system in those. Said outright, since Ceres otherwise searches the graph
-  // for an independent set on every solve (a third of a solve's time).
-  options.linear_solver_type = ceres::SPARSE_SCHUR;
-  if (part != Part::frames) {
-    auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-    for (Block& b : nodes)
-      if (problem.HasParameterBlock(b.data())) ordering->AddElementToGroup(b.data(), 0);
-    for (std::vector<Block>* blocks : {&submaps, &frames})
-      for (Block& b : *blocks)
-        if (problem.HasParameterBlock(b.data())) ordering->AddElementToGroup(b.data(), 1);
-    options.linear_solver_ordering = ordering;
-  }
+  ceres::Solver::Options options = solver_options(problem, part, nodes, submaps, frames);
   options.num_threads = 1;  // deterministic, and the caller decides where it runs
   options.max_num_iterations = config.max_iterations;
   options.logging_type = ceres::SILENT;

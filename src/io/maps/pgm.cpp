@@ -79,55 +79,37 @@ std::uint8_t to_full_range(long value, long maxval) {
   return static_cast<std::uint8_t>(maxval == 255 ? value : value * 255 / maxval);
 }
 
-}  // namespace
-
-GreyImage parse_pgm(std::string_view bytes, const std::string& source_name) {
-  if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '2')) {
-    const bool png = bytes.size() >= 4 && bytes.substr(1, 3) == "PNG";
-    throw InputError(fmt::format("{}: line 1: not a PGM image (expected magic number P5 or P2){}", source_name,
-                                 png ? "; PNG map images are not supported, convert to PGM" : ""));
-  }
-  const bool binary = bytes[1] == '5';
-  PgmCursor cursor(bytes, source_name);
-  if (!cursor.at_end() && !is_pgm_space(cursor.peek()) && cursor.peek() != '#') {
-    cursor.fail("not a PGM image (expected whitespace after the magic number)");
-  }
-  GreyImage image;
-  image.width = static_cast<int>(cursor.read_number("width", kMaxPgmSide));
-  image.height = static_cast<int>(cursor.read_number("height", kMaxPgmSide));
-  const long maxval = cursor.read_number("maxval", 65535);
-  if (image.width == 0 || image.height == 0) cursor.fail(fmt::format("empty image ({}x{})", image.width, image.height));
-  if (maxval == 0) cursor.fail("maxval is 0");
-  if (maxval > 255) cursor.fail(fmt::format("16-bit PGM (maxval {}) is not supported; use maxval 255", maxval));
-
+// P5: the raster's bytes, exactly as many as the header says.
+void read_binary_pixels(PgmCursor& cursor, long maxval, GreyImage& image) {
   const std::size_t count = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-  if (binary) {
-    // Exactly one whitespace character separates maxval from the raster.
-    if (cursor.at_end()) cursor.fail("file ends after the header; no pixel data");
-    cursor.advance();
-    if (cursor.remaining() < count) {
-      cursor.fail(fmt::format("truncated pixel data: header says {}x{} = {} bytes, file has {}", image.width,
-                              image.height, count, cursor.remaining()));
-    }
-    if (cursor.remaining() > count) {
-      cursor.fail(fmt::format("size mismatch: header says {}x{} = {} bytes, file has {} (trailing data)",
-                              image.width, image.height, count, cursor.remaining()));
-    }
-    const std::string_view data = cursor.rest();
-    image.pixels.resize(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const long v = static_cast<unsigned char>(data[i]);
-      if (v > maxval) cursor.fail(fmt::format("pixel {} has value {} above maxval {}", i, v, maxval));
-      image.pixels[i] = to_full_range(v, maxval);
-    }
-    return image;
+  // Exactly one whitespace character separates maxval from the raster.
+  if (cursor.at_end()) cursor.fail("file ends after the header; no pixel data");
+  cursor.advance();
+  if (cursor.remaining() < count) {
+    cursor.fail(fmt::format("truncated pixel data: header says {}x{} = {} bytes, file has {}", image.width,
+                            image.height, count, cursor.remaining()));
   }
+  if (cursor.remaining() > count) {
+    cursor.fail(fmt::format("size mismatch: header says {}x{} = {} bytes, file has {} (trailing data)", image.width,
+                            image.height, count, cursor.remaining()));
+  }
+  const std::string_view data = cursor.rest();
+  image.pixels.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const long v = static_cast<unsigned char>(data[i]);
+    if (v > maxval) cursor.fail(fmt::format("pixel {} has value {} above maxval {}", i, v, maxval));
+    image.pixels[i] = to_full_range(v, maxval);
+  }
+}
 
-  // Plain PGM: each value needs at least one digit and one separator, which
-  // bounds the allocation by the file size even if the header lies.
+// P2: the values in text, separated by whitespace and comments.
+void read_plain_pixels(PgmCursor& cursor, long maxval, GreyImage& image) {
+  const std::size_t count = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  // Each value needs at least one digit and one separator, which bounds the
+  // allocation by the file size even if the header lies.
   if (count > cursor.remaining()) {
-    cursor.fail(fmt::format("truncated pixel data: header says {}x{} = {} values, file is too short",
-                            image.width, image.height, count));
+    cursor.fail(fmt::format("truncated pixel data: header says {}x{} = {} values, file is too short", image.width,
+                            image.height, count));
   }
   image.pixels.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -143,6 +125,29 @@ GreyImage parse_pgm(std::string_view bytes, const std::string& source_name) {
   if (!cursor.at_end()) {
     cursor.fail(fmt::format("size mismatch: more than {}x{} = {} pixel values", image.width, image.height, count));
   }
+}
+
+}  // namespace
+
+GreyImage parse_pgm(std::string_view bytes, const std::string& source_name) {
+  if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '2')) {
+    const bool png = bytes.size() >= 4 && bytes.substr(1, 3) == "PNG";
+    throw InputError(fmt::format("{}: line 1: not a PGM image (expected magic number P5 or P2){}", source_name,
+                                 png ? "; PNG map images are not supported, convert to PGM" : ""));
+  }
+  PgmCursor cursor(bytes, source_name);
+  if (!cursor.at_end() && !is_pgm_space(cursor.peek()) && cursor.peek() != '#') {
+    cursor.fail("not a PGM image (expected whitespace after the magic number)");
+  }
+  GreyImage image;
+  image.width = static_cast<int>(cursor.read_number("width", kMaxPgmSide));
+  image.height = static_cast<int>(cursor.read_number("height", kMaxPgmSide));
+  const long maxval = cursor.read_number("maxval", 65535);
+  if (image.width == 0 || image.height == 0) cursor.fail(fmt::format("empty image ({}x{})", image.width, image.height));
+  if (maxval == 0) cursor.fail("maxval is 0");
+  if (maxval > 255) cursor.fail(fmt::format("16-bit PGM (maxval {}) is not supported; use maxval 255", maxval));
+  if (bytes[1] == '5') read_binary_pixels(cursor, maxval, image);
+  else read_plain_pixels(cursor, maxval, image);
   return image;
 }
 
