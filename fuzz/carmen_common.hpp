@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the two CARMEN targets: the seed logs (the shapes the unit tests
-// of src/io/logs/carmen_reader_test.cpp feed the reader, and the first
+// of src/io/logs/carmen_reader*_test.cpp feed the reader, and the first
 // records of the shared logs) and what a log read without error guarantees.
 #include <cmath>
 #include <string>

@@ -233,7 +233,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   const int coarse_budget = levels > 1 ? (config_.evaluations - fine_budget) / (levels - 1) : 0;
 
   const MotionPrior motion{prior, config_.prior_weight, config_.prior_sigma_xy, config_.prior_sigma_theta};
-  FineStart coarse{prior, config_.sigma_xy, config_.sigma_theta};
+  SearchStart coarse{prior, config_.sigma_xy, config_.sigma_theta};
   search_coarse(map, points, motion, coarse_budget, coarse, result.evaluations);
 
   // The finest level searches from the coarse answer and, when it differs,
@@ -244,7 +244,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   const Pose2 d = between(prior, coarse.pose);
   const bool two_starts = levels > 1 && (std::hypot(d.x, d.y) > fine.resolution() * 0.5 ||
                                          std::abs(d.theta) > config_.polish_step_theta);
-  std::vector<FineStart> starts{coarse};
+  std::vector<SearchStart> starts{coarse};
   if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
   const ScanScorer fine_scorer(fine, *points.level.front(), 1, config_.unknown_value);
   result.pose = search_fine(fine_scorer, *points.level.front(), motion, starts, fine_budget, result.evaluations);
@@ -254,7 +254,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
 }
 
 void MonteCarloMatcher::search_coarse(const MultiResMap& map, const LevelPoints& points, const MotionPrior& motion,
-                                      int budget, FineStart& best, int& evaluations) {
+                                      int budget, SearchStart& best, int& evaluations) {
   for (int level = map.levels() - 1; level >= 1; --level) {
     const auto stride = static_cast<std::size_t>(config_.coarse_stride) << std::min(level - 1, 1);
     const ScanScorer scorer(map.level(level), *points.level[static_cast<std::size_t>(level)], stride, config_.unknown_value);
@@ -269,7 +269,7 @@ void MonteCarloMatcher::search_coarse(const MultiResMap& map, const LevelPoints&
 }
 
 Pose2 MonteCarloMatcher::search_fine(const ScanScorer& fine_scorer, const std::vector<ScanPoint>& fine_points,
-                                     const MotionPrior& motion, std::vector<FineStart> starts, int budget,
+                                     const MotionPrior& motion, std::vector<SearchStart> starts, int budget,
                                      int& evaluations) {
   const int per_start = budget / static_cast<int>(starts.size());
   const auto stride = static_cast<std::size_t>(config_.fine_search_stride);
@@ -285,7 +285,7 @@ Pose2 MonteCarloMatcher::search_fine(const ScanScorer& fine_scorer, const std::v
     int left;  // evaluations of its start's budget not yet spent
   };
   std::vector<Racer> racers;
-  for (FineStart& start : starts) {
+  for (SearchStart& start : starts) {
     Search search{fine_scorer, per_start, motion, sampler ? &*sampler : nullptr};
     double score = search.score(start.pose);
     random_phase(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);

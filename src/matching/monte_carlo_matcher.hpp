@@ -100,17 +100,17 @@ class MonteCarloMatcher {
   LevelPoints merge_per_level(const MultiResMap& map, const std::vector<ScanPoint>& points) const;
   MatchResult match_from(const MultiResMap& map, const LevelPoints& points, const Pose2& prior);
   // Where a level's search starts, and its spreads.
-  struct FineStart {
+  struct SearchStart {
     Pose2 pose;
     double sigma_xy, sigma_th;
   };
   // The coarse levels, coarsest first, each from the last one's answer:
   // leaves `best` where the finest level starts, with its spreads.
   void search_coarse(const MultiResMap& map, const LevelPoints& points, const matcher_detail::MotionPrior& motion,
-                     int budget, FineStart& best, int& evaluations);
+                     int budget, SearchStart& best, int& evaluations);
   // The finest level from each start (its budget shared): the best pose.
   Pose2 search_fine(const ScanScorer& fine_scorer, const std::vector<ScanPoint>& fine_points,
-                    const matcher_detail::MotionPrior& motion, std::vector<FineStart> starts, int budget,
+                    const matcher_detail::MotionPrior& motion, std::vector<SearchStart> starts, int budget,
                     int& evaluations);
   // Random phase then coordinate ascent on one level, updating the best pose and the spreads.
   void search_level(matcher_detail::Search& search, int level, Pose2& best, double& best_score, double& sigma_xy,

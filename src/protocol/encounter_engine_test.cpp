@@ -7,72 +7,13 @@
 
 #include "io/maps/dsmap.hpp"
 #include "swarm/map_knowledge.hpp"
+#include "protocol/encounter_engine_test_util.hpp"
 #include "swarm/test_scenes.hpp"
 
 namespace dsswarm::protocol {
 namespace {
 
-// A robot reduced to what the engine asks of it: a map built in the L-shaped
-// office from its own start, its scan where it stands, what it knows.
-class FakeRobot : public AgentPort {
- public:
-  FakeRobot(const std::string& name, const Pose2& start, const Pose2& now, std::uint64_t seed)
-      : knowledge(name) {
-    Rng rng(seed);
-    const World world = test::l_shaped_office();
-    std::vector<Pose2> path;
-    for (int k = 0; k <= 10; ++k) path.push_back(interpolate(start, now, k / 10.0));
-    own = std::make_shared<MultiResMap>(test::map_from(world, path, start, rng));
-    view.map = own.get();
-    view.points = test::scan_at(world, now, rng);
-    view.pose = start.inverse() * now;
-    view.surroundings = surroundings_points(*own, view.pose, 8.0, 2000);
-    view.wide_surroundings = surroundings_points(*own, view.pose, 40.0, 8000);
-  }
-  std::optional<CapturedView> capture_view(const std::string&, std::uint64_t encounter) override {
-    captured.push_back({encounter, merges});
-    return CapturedView{view, 100.0, nullptr, nullptr, 0, nullptr};
-  }
-  MapSnapshot snapshot(const CapturedView&) override { return knowledge.snapshot(own, version); }
-  std::vector<LayerVersion> inventory() const override {
-    std::vector<LayerVersion> out{{knowledge.self(), version, 0}};
-    for (const MapLayer& l : knowledge.layers()) out.push_back({l.origin, l.version, l.hops});
-    return out;
-  }
-  std::optional<Pose2> known_frame(const std::string& origin) const override {
-    const MapLayer* l = knowledge.find(origin);
-    return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
-  }
-  void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView&, std::uint64_t) override {
-    if (snapshot.layers.empty()) return;  // the peer had nothing new
-    ++merges;
-    last_transform = sender_in_self;
-    knowledge.absorb(snapshot, sender_in_self);
-  }
-
-  // Loop closing as the engine sees it: a revision, and its one submap at x = revision.
-  std::uint64_t graph_revision() const override { return revision; }
-  MapMoves map_moves(const std::vector<TieScan>& ties) const override {
-    MapMoves m{revision, {{1, Pose2(static_cast<double>(revision), 0.0, 0.0)}}, {}};
-    for (const TieScan& t : ties) m.ties.push_back({t.encounter, t.offered, t.offered * Pose2(0.1, 0.0, 0.0)});
-    return m;
-  }
-  void follow(const std::string& peer, const MapMoves& moves) override { followed.emplace_back(peer, moves); }
-
-  MapKnowledge knowledge;
-  std::uint64_t version = 11;  // scans in its own map
-  std::uint64_t revision = 0;
-  std::vector<std::pair<std::string, MapMoves>> followed;
-  std::shared_ptr<MultiResMap> own;
-  EncounterView view;
-  int merges = 0;
-  Pose2 last_transform;
-  std::vector<std::pair<std::uint64_t, int>> captured;  // (encounter, merges by then) per view taken
-};
-
-bool same(const Pose2& p, const Pose2& q) { return p.x == q.x && p.y == q.y && p.theta == q.theta; }
-
-const Pose2 kStartA{1.5, 1.5, 0.4}, kStartB{8.5, 2.0, -2.5};
+using namespace engine_test;
 
 struct Pair {
   Pair(const SwarmConfig& config)
@@ -98,12 +39,6 @@ struct Pair {
   EncounterEngine ea, eb;
   MessageGate ga, gb;
 };
-
-SwarmConfig unconfirmed() {
-  SwarmConfig c;
-  c.confirm = false;
-  return c;
-}
 
 using End = EncounterOutcome::End;
 
@@ -351,100 +286,6 @@ TEST(EncounterEngine, OpenEncountersAreBounded) {
   const auto ended = e.take_outcomes();
   ASSERT_EQ(ended.size(), 2u);
   EXPECT_EQ(ended[1].reason, "stopped");
-}
-
-// Three robots: a meets b (encounter 1), then c (encounter 2) while 1 is
-// still open. a takes its view for 2 only once 1 has ended and merged, as in
-// one process, where every encounter ends before the next begins.
-struct Trio {
-  Trio()
-      : a("a", kStartA, {3.0, 2.0, 0.1}, 1),
-        b("b", kStartB, {5.0, 2.5, 2.9}, 2),
-        c("c", kStartB, {5.0, 2.5, 2.9}, 3) {
-    for (FakeRobot* r : {&a, &b, &c}) engines.emplace(r->knowledge.self(), std::make_unique<Side>(unconfirmed(), *r));
-  }
-  struct Side {
-    Side(const SwarmConfig& config, FakeRobot& robot)
-        : engine(robot.knowledge.self(), config, robot), gate(robot.knowledge.self()) {}
-    EncounterEngine engine;
-    MessageGate gate;
-  };
-  // Delivers everything in flight; what goes to the robots in `hold` waits
-  // for a later pump without them.
-  void pump(double now, const std::set<std::string>& hold = {}) {
-    std::vector<Outgoing> later;
-    for (bool moved = true; moved;) {
-      moved = false;
-      std::vector<Outgoing> all = std::exchange(held, {});
-      for (auto& [name, side] : engines)
-        for (Outgoing& out : side->engine.take_outbox()) all.push_back(std::move(out));
-      for (Outgoing& out : all) {
-        moved = true;
-        if (hold.contains(out.recipient)) {
-          later.push_back(std::move(out));
-          continue;
-        }
-        Side& to = *engines.at(out.recipient);
-        if (auto v = to.gate.admit(out.bytes); v.message) to.engine.receive(*v.message, out.bytes.size(), now);
-      }
-    }
-    held = std::move(later);
-  }
-  EncounterEngine& e(const std::string& name) { return engines.at(name)->engine; }
-  FakeRobot a, b, c;
-  std::map<std::string, std::unique_ptr<Side>> engines;
-  std::vector<Outgoing> held;
-};
-
-TEST(EncounterEngine, ALaterEncounterWaitsForTheEarlierOneAndSeesItsMerge) {
-  Trio t;
-  t.e("a").start("b", 1, 0.0);
-  t.e("a").start("c", 2, 0.5);
-  t.e("c").start("a", 2, 0.5);
-  t.pump(0.5, {"b"});  // b is slow: nothing has reached it yet
-  EXPECT_EQ(t.e("a").open_encounters(), 2u);  // 1 open, 2 waiting
-  ASSERT_EQ(t.a.captured.size(), 1u);         // a has taken its view for 1 only
-  EXPECT_TRUE(t.e("a").take_outcomes().empty());
-  EXPECT_TRUE(t.e("c").take_outcomes().empty());  // c waits for a's offer
-
-  t.e("b").start("a", 1, 0.0);
-  t.pump(1.0);
-  const auto oa = t.e("a").take_outcomes();
-  ASSERT_EQ(oa.size(), 2u);
-  EXPECT_EQ(oa[0].encounter, 1u);
-  EXPECT_EQ(oa[0].end, End::accepted) << oa[0].reason;
-  EXPECT_EQ(oa[1].encounter, 2u);
-  EXPECT_EQ(oa[1].end, End::accepted) << oa[1].reason;
-  EXPECT_EQ(oa[1].started, 0.5);  // its own event time, not when it could begin
-  ASSERT_EQ(t.a.captured.size(), 2u);
-  EXPECT_EQ(t.a.captured[1], (std::pair<std::uint64_t, int>{2, 1}));  // taken after b's map was merged
-  const auto oc = t.e("c").take_outcomes();
-  ASSERT_EQ(oc.size(), 1u);
-  EXPECT_EQ(oc[0].end, End::accepted) << oc[0].reason;
-  EXPECT_EQ(t.e("a").open_encounters(), 0u);
-}
-
-TEST(EncounterEngine, AnEncounterThatWaitedTooLongIsDeclinedToThePeer) {
-  Trio t;
-  const double timeout = unconfirmed().offer_timeout;
-  t.e("a").start("b", 1, 0.0);
-  t.e("a").start("c", 2, 0.0);
-  t.e("c").start("a", 2, 0.0);
-  t.pump(0.0, {"b"});  // b never answers
-  t.e("a").tick(timeout + 1.0);
-  t.pump(timeout + 1.0, {"b"});
-  EXPECT_EQ(t.e("a").open_encounters(), 0u);
-  const auto oa = t.e("a").take_outcomes();
-  ASSERT_EQ(oa.size(), 2u);
-  EXPECT_EQ(oa[0].end, End::abandoned);
-  EXPECT_NE(oa[0].reason.find("timed out"), std::string::npos) << oa[0].reason;
-  EXPECT_EQ(oa[1].end, End::abandoned);
-  EXPECT_NE(oa[1].reason.find("earlier encounters"), std::string::npos) << oa[1].reason;
-  EXPECT_EQ(t.a.captured.size(), 1u);  // never opened
-  const auto oc = t.e("c").take_outcomes();  // told at once, not after its own time-out
-  ASSERT_EQ(oc.size(), 1u);
-  EXPECT_EQ(oc[0].end, End::declined);
-  EXPECT_EQ(t.e("c").open_encounters(), 0u);
 }
 
 }  // namespace

@@ -212,6 +212,37 @@ DsMass mass_for(std::int8_t value) {
   return p >= 0.5f ? DsMass{2.0f * p - 1.0f, 0.0f} : DsMass{0.0f, 1.0f - 2.0f * p};
 }
 
+// The picture's pixels as map_server reads them (rows top down, thresholds,
+// negate, scale mode), into occupancy values and masses (rows bottom up).
+void fill_cells(const GreyImage& image, MapMode mode, LoadedMap& map) {
+  const int width = image.width, height = image.height;
+  map.raster.width = width;
+  map.raster.height = height;
+  map.raster.cells.resize(image.pixels.size());
+  map.occupancy.resize(image.pixels.size());
+  for (int row = 0; row < height; ++row) {
+    const int cy = height - 1 - row;  // picture row 0 is the top = highest y
+    for (int cx = 0; cx < width; ++cx) {
+      const std::size_t src = static_cast<std::size_t>(row) * width + cx;
+      const std::size_t dst = static_cast<std::size_t>(cy) * width + cx;
+      double colour = image.pixels[src];
+      if (map.options.negate) colour = 255.0 - colour;
+      const double occ = (255.0 - colour) / 255.0;
+      std::int8_t value = -1;
+      if (occ > map.options.occupied_thresh) {
+        value = 100;
+      } else if (occ < map.options.free_thresh) {
+        value = 0;
+      } else if (mode == MapMode::kScale) {
+        const double ratio = (occ - map.options.free_thresh) / (map.options.occupied_thresh - map.options.free_thresh);
+        value = static_cast<std::int8_t>(99.0 * ratio);  // truncation, as map_server's int assignment
+      }
+      map.occupancy[dst] = value;
+      map.raster.cells[dst] = mass_for(value);
+    }
+  }
+}
+
 }  // namespace
 
 void check_map_server_options(const MapServerOptions& o) {
@@ -291,32 +322,7 @@ LoadedMap read_map_server(const fs::path& yaml_path) {
   if (image_path.is_relative()) image_path = yaml_path.parent_path() / image_path;
   const GreyImage image = parse_pgm(read_whole_file(image_path, fields.file(), image_node), image_path.string());
 
-  const int width = image.width, height = image.height;
-  map.raster.width = width;
-  map.raster.height = height;
-  map.raster.cells.resize(image.pixels.size());
-  map.occupancy.resize(image.pixels.size());
-  for (int row = 0; row < height; ++row) {
-    const int cy = height - 1 - row;  // picture row 0 is the top = highest y
-    for (int cx = 0; cx < width; ++cx) {
-      const std::size_t src = static_cast<std::size_t>(row) * width + cx;
-      const std::size_t dst = static_cast<std::size_t>(cy) * width + cx;
-      double colour = image.pixels[src];
-      if (map.options.negate) colour = 255.0 - colour;
-      const double occ = (255.0 - colour) / 255.0;
-      std::int8_t value = -1;
-      if (occ > map.options.occupied_thresh) {
-        value = 100;
-      } else if (occ < map.options.free_thresh) {
-        value = 0;
-      } else if (mode == MapMode::kScale) {
-        const double ratio = (occ - map.options.free_thresh) / (map.options.occupied_thresh - map.options.free_thresh);
-        value = static_cast<std::int8_t>(99.0 * ratio);  // truncation, as map_server's int assignment
-      }
-      map.occupancy[dst] = value;
-      map.raster.cells[dst] = mass_for(value);
-    }
-  }
+  fill_cells(image, mode, map);
   return map;
 }
 
