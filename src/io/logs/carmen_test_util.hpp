@@ -12,6 +12,7 @@
 
 #include "common/errors.hpp"
 #include "io/logs/carmen_reader.hpp"
+#include "sensor/sensor_log_test_util.hpp"
 
 namespace dsswarm::test {
 
@@ -44,11 +45,6 @@ inline std::string error_of(const std::filesystem::path& path, const CarmenOptio
     return e.what();
   }
   return "";
-}
-
-inline bool has_warning(const SensorLog& log, const std::string& needle) {
-  return std::any_of(log.warnings.begin(), log.warnings.end(),
-                     [&](const std::string& w) { return w.find(needle) != std::string::npos; });
 }
 
 inline std::string all_warnings(const SensorLog& log) { return fmt::format("{}", fmt::join(log.warnings, "\n")); }

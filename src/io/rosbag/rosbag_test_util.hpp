@@ -14,21 +14,13 @@
 
 #include "common/errors.hpp"
 #include "io/rosbag/rosbag_reader.hpp"
+#include "sensor/sensor_log_test_util.hpp"
 
 namespace dsswarm::rosbag_test {
 
 inline constexpr double kPi = std::numbers::pi;
-
-inline bool has_warning(const SensorLog& log, const std::string& text) {
-  return std::any_of(log.warnings.begin(), log.warnings.end(),
-                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
-}
-
-inline std::string joined(const std::vector<std::string>& lines) {
-  std::string out;
-  for (const auto& l : lines) out += l + "\n";
-  return out;
-}
+using test::has_warning;
+using test::joined;
 
 inline void expect_pose_near(const std::optional<Pose2>& actual, const Pose2& expected, double tol) {
   ASSERT_TRUE(actual.has_value());

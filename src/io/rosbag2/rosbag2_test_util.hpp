@@ -15,11 +15,14 @@
 #include "common/test_files.hpp"
 #include "io/rosbag2/rosbag2_reader.hpp"
 #include "io/rosbag2/rosbag2_test_writer.hpp"
+#include "sensor/sensor_log_test_util.hpp"
 
 namespace dsswarm::rosbag2_test {
 
 namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
+using test::has_warning;
+using test::joined;
 
 inline BagMessage scan_at(double stamp, std::vector<float> ranges) {
   return bag_message("/scan", stamp, laser_scan(stamp, std::move(ranges)));
@@ -63,17 +66,6 @@ inline fs::path write_test_bag(const std::string& name, const std::vector<BagMes
   const fs::path dir = fs::path(DSSWARM_TEST_TMP) / "rosbag2" / name;
   write_bag(dir, messages, options);
   return dir;
-}
-
-inline bool has_warning(const SensorLog& log, const std::string& text) {
-  return std::any_of(log.warnings.begin(), log.warnings.end(),
-                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
-}
-
-inline std::string joined(const std::vector<std::string>& lines) {
-  std::string out;
-  for (const auto& l : lines) out += l + "\n";
-  return out;
 }
 
 inline std::string input_error_of(const fs::path& path, const BagReadOptions& options = {}) {
