@@ -41,6 +41,8 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["largest_scan_gap_ms"] = r.largest_gap_ms;
   j["largest_scan_gap_during_encounter_ms"] = r.largest_gap_during_encounter_ms;
   j["merge_latency_ms"] = percentiles(r.merge_latencies_ms);
+  j["merge_ready_ms"] = percentiles(r.merge_ready_ms);
+  j["merges_late"] = r.merges_late;
   j["encounters"] = s.encounters;
   j["encounters_accepted"] = s.encounters_accepted;
   j["messages_rejected"] = r.rejected_by_reason;

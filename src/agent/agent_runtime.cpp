@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <limits>
+
 #include "agent/agent_files.hpp"
 #include "agent/checkpoint.hpp"
 #include "common/agent_name.hpp"
@@ -38,7 +40,9 @@ std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, Executor& backgrou
     if (const auto previous = set_aside_checkpoint(o.out))
       spdlog::warn("{}: starting afresh (no --resume): the checkpoint of the earlier run is kept in {}", o.name,
                    previous->string());
-    return std::make_unique<SwarmAgent>(o.name, slam, &background);
+    auto agent = std::make_unique<SwarmAgent>(o.name, slam, &background);
+    agent->set_merge_delay(o.swarm.merge_delay);
+    return agent;
   }
   Checkpoint c = read_checkpoint(o.out, o.name);
   spdlog::info("{}: resuming from {} ({} scans, {} layers, pose {:.2f} {:.2f} {:.2f})", o.name, o.out.string(),
@@ -46,7 +50,9 @@ std::unique_ptr<SwarmAgent> make_agent(const AgentOptions& o, Executor& backgrou
   scans_before = c.scans_processed;
   if (!c.trajectory.empty()) resumed_at = c.trajectory.back().timestamp;
   trajectory = std::move(c.trajectory);
-  return std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose, &background, c.odometry);
+  auto agent = std::make_unique<SwarmAgent>(o.name, slam, c.snapshot, c.pose, &background, c.odometry);
+  agent->set_merge_delay(o.swarm.merge_delay);
+  return agent;
 }
 
 }  // namespace
@@ -91,15 +97,16 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
         ++scans_in_checkpoint_;
         continue;
       }
+      install_due(scan->timestamp);
       after_scan(*scan, shared_->process(*scan));
       continue;
     }
-    for (std::uint64_t id : shared_->install_ready()) note_installed(id);
     {
       std::lock_guard lock(trigger_mutex_);
       fire(triggers_.overdue(SteadyClock::now()));
     }
     if (!feed_.exhausted()) continue;
+    install_due(std::numeric_limits<double>::infinity());  // no scan comes to wait for
     if (!exhausted_at) exhausted_at = now();
     const double idle = now() - *exhausted_at;
     const bool busy = open_encounters_.load() > 0 || shared_->composing();
@@ -117,14 +124,25 @@ void AgentRuntime::run(const std::atomic<bool>& stop) {
     engine_->abandon_all(options_.name + " stopped", swarm_now());
     flush_engine();
   }
-  for (std::uint64_t id : shared_->install_ready()) note_installed(id);
+  install_due(std::numeric_limits<double>::infinity());
   write_outputs();
 }
 
-void AgentRuntime::note_installed(std::uint64_t encounter) {
+void AgentRuntime::install_due(double stamp) {
+  const std::optional<SwarmAgent::Installed> installed = shared_->install_due(stamp);
+  const auto composed = shared_->take_composed();
   std::lock_guard lock(report_mutex_);
-  if (auto it = event_time_.find(encounter); it != event_time_.end())
-    report_.merge_latencies_ms.push_back(1000.0 * (now() - it->second));
+  const auto since_event = [&](std::uint64_t encounter, double at) -> std::optional<double> {
+    const auto it = event_time_.find(encounter);
+    return it == event_time_.end() ? std::nullopt : std::optional<double>(1000.0 * (at - it->second));
+  };
+  for (const auto& [encounter, at] : composed)
+    if (auto ms = since_event(encounter, std::chrono::duration<double>(at - started_).count()))
+      report_.merge_ready_ms.push_back(*ms);
+  if (!installed) return;
+  if (installed->late) ++report_.merges_late;
+  for (std::uint64_t encounter : installed->encounters)
+    if (auto ms = since_event(encounter, now())) report_.merge_latencies_ms.push_back(*ms);
 }
 
 void AgentRuntime::after_scan(const LaserScan& scan, const SlamStep& step) {
@@ -140,7 +158,6 @@ void AgentRuntime::after_scan(const LaserScan& scan, const SlamStep& step) {
     }
     last_scan_at_ = t;
   }
-  for (std::uint64_t id : shared_->install_ready()) note_installed(id);
   {
     std::lock_guard lock(trigger_mutex_);
     fire(triggers_.on_scan(scan.timestamp));
@@ -201,6 +218,8 @@ AgentReport AgentRuntime::report() const {
   r.largest_gap_ms = report_.largest_gap_ms;
   r.largest_gap_during_encounter_ms = report_.largest_gap_during_encounter_ms;
   r.merge_latencies_ms = report_.merge_latencies_ms;
+  r.merge_ready_ms = report_.merge_ready_ms;
+  r.merges_late = report_.merges_late;
   r.outcomes = report_.outcomes;
   r.triggers_late = triggers_late_;
   r.scans_in_checkpoint = scans_in_checkpoint_.load();

@@ -61,6 +61,8 @@ struct AgentReport {
   double largest_gap_ms = 0.0;                 // between two processed scans, any time
   double largest_gap_during_encounter_ms = 0.0;
   std::vector<double> merge_latencies_ms;      // proximity event → merged map in use
+  std::vector<double> merge_ready_ms;          // proximity event → merged map composed
+  std::uint64_t merges_late = 0;               // not ready by their scan (swarm.merge_delay)
   std::map<std::string, std::uint64_t> rejected_by_reason;
   std::uint64_t triggers_late = 0;
   std::uint64_t scans_in_checkpoint = 0;  // resumed: scans received again that the checkpoint holds
@@ -86,7 +88,7 @@ class AgentRuntime {
 
  private:
   void swarm_loop();
-  void note_installed(std::uint64_t encounter);
+  void install_due(double stamp);
   void heartbeat_loop();
   protocol::AgentStatus status(double now) const;
   void handle(const protocol::Message& m, std::size_t bytes, double now);

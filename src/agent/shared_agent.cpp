@@ -1,30 +1,14 @@
 #include "agent/shared_agent.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "swarm/map_merge.hpp"
 
 namespace dsswarm::agent {
-namespace {
-
-std::vector<LayerVersion> versions_of(const std::vector<MapLayer>& layers) {
-  std::vector<LayerVersion> out;
-  for (const MapLayer& l : layers) out.push_back({l.origin, l.version, l.hops});
-  return out;
-}
-
-bool same_layers(const std::vector<LayerVersion>& x, const std::vector<LayerVersion>& y) {
-  return std::equal(x.begin(), x.end(), y.begin(), y.end(), [](const LayerVersion& a, const LayerVersion& b) {
-    return a.origin == b.origin && a.version == b.version && a.hops == b.hops;
-  });
-}
-
-}  // namespace
-
 SharedAgent::SharedAgent(std::unique_ptr<SwarmAgent> agent, const RelativePoseConfig& locate)
     : agent_(std::move(agent)),
       locate_(locate),
-      installed_(versions_of(agent_->knowledge().layers())),  // a resumed agent starts composed
       composer_([this] { compose_loop(); }) {}
 
 SharedAgent::~SharedAgent() {
@@ -75,16 +59,16 @@ SharedAgent::Staged SharedAgent::capture_locked() const {
   Staged s{{agent_->view(locate_), agent_->last_scan()->timestamp, map,
             own_only ? map : std::make_shared<const MultiResMap>(own), agent_->own_version(),
             agent_->loop_closing() ? std::make_shared<const MapLayer>(agent_->own_layer()) : nullptr},
-           own_only ? std::vector<LayerVersion>{} : installed_, own_only && agent_->loop_closing()};
+           own_only ? std::vector<LayerVersion>{} : agent_->working_layers(), own_only && agent_->loop_closing()};
   s.view.view.map = map.get();
   return s;
 }
 
-// In one process an encounter sees every merge of the encounters before it
-// (each ends before the next begins). A robot process builds a merged map in
-// the background, so the view taken at the scan may lack a merge that came in
-// since: then its map is composed again, from the own map at the scan and
-// what the robot knows now. The composing is the swarm thread's, off the scan path.
+// An encounter sees every merge of the encounters before it, also one not yet
+// in use (SwarmAgent::fresher_placement_map, as in one process). The view
+// taken at the scan may lack a merge that came in since: then its map is
+// composed again, from the own map at the scan and what the robot knows now.
+// The composing is the swarm thread's, off the scan path.
 protocol::CapturedView SharedAgent::up_to_date(Staged staged) const {
   if (staged.own_only) return std::move(staged.view);
   std::vector<MapLayer> layers;
@@ -92,7 +76,7 @@ protocol::CapturedView SharedAgent::up_to_date(Staged staged) const {
     std::lock_guard lock(mutex_);
     layers = agent_->knowledge().layers();
   }
-  if (same_layers(staged.layers, versions_of(layers))) return std::move(staged.view);
+  if (staged.layers == layer_versions(layers)) return std::move(staged.view);
   auto map = std::make_shared<const MultiResMap>(compose_working_map(*staged.view.own, layers));
   staged.view.view.map = map.get();
   staged.view.keep_alive = map;
@@ -146,12 +130,7 @@ void SharedAgent::merge(MapSnapshot snapshot, const Pose2& sender_in_self, const
   std::lock_guard lock(mutex_);
   agent_->tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self, encounter);
   if (!agent_->absorb(snapshot, sender_in_self)) return;
-  std::vector<std::uint64_t> encounters{encounter};
-  if (job_) {  // not started yet: the new job holds everything it would have
-    agent_->cancel_job();
-    encounters.insert(encounters.end(), job_->encounters.begin(), job_->encounters.end());
-  }
-  job_ = Job{agent_->compose_job(), std::move(encounters)};
+  agent_->schedule_merge(encounter, at.stamp, at.own, at.own_version);
   wake_composer_.notify_all();
 }
 
@@ -172,37 +151,31 @@ void SharedAgent::follow(const std::string& peer, const MapMoves& moves) {
 
 bool SharedAgent::composing() const {
   std::lock_guard lock(mutex_);
-  return job_ || busy_ || ready_;
+  return agent_->merges_pending();
 }
 
 void SharedAgent::compose_loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    wake_composer_.wait(lock, [&] { return stop_ || job_; });
+    wake_composer_.wait(lock, [&] { return stop_ || agent_->has_merge_job(); });
     if (stop_) return;
-    Job job = std::move(*job_);
-    job_.reset();
-    busy_ = true;
+    std::optional<MergeSchedule::Claimed> claimed = agent_->claim_merge_job();
     lock.unlock();
-    MultiResMap working = SwarmAgent::compose(job.job);
+    MultiResMap working = SwarmAgent::compose(claimed->job);
     lock.lock();
-    busy_ = false;
-    if (ready_) {  // never installed: this one holds it all
-      agent_->cancel_job();
-      job.encounters.insert(job.encounters.end(), ready_->second.encounters.begin(), ready_->second.encounters.end());
-    }
-    ready_.emplace(std::move(working), std::move(job));
+    agent_->merge_job_composed(claimed->ticket, std::move(working));
+    composed_.emplace_back(claimed->encounter, SteadyClock::now());
   }
 }
 
-std::vector<std::uint64_t> SharedAgent::install_ready() {
+std::optional<SwarmAgent::Installed> SharedAgent::install_due(double stamp) {
   std::lock_guard lock(mutex_);
-  if (!ready_) return {};
-  auto [working, job] = std::move(*ready_);
-  ready_.reset();
-  agent_->install(std::move(working), job.job.own_version);
-  installed_ = versions_of(job.job.foreign);
-  return job.encounters;
+  return agent_->install_due(stamp, false);
+}
+
+std::vector<std::pair<std::uint64_t, SteadyClock::time_point>> SharedAgent::take_composed() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(composed_, {});
 }
 
 }  // namespace dsswarm::agent

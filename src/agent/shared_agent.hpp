@@ -29,9 +29,13 @@ class SharedAgent : public protocol::AgentPort {
   void restore_trajectory(Trajectory earlier);
   // The scan loop. Returns the step; the trajectory keeps every scan's pose.
   SlamStep process(const LaserScan& scan);
-  // Installs a merged map the composer finished (scan loop, between scans).
-  // Returns the encounters whose merge became visible, with when they were merged.
-  std::vector<std::uint64_t> install_ready();
+  // Before a scan stamped `stamp` (scan loop): installs the newest merged
+  // map due by then that the composer has finished (merge_schedule.hpp).
+  // +infinity: whatever is finished (the input has ended).
+  std::optional<SwarmAgent::Installed> install_due(double stamp);
+  // The encounters whose merged map the composer finished since the last
+  // call, with when.
+  std::vector<std::pair<std::uint64_t, SteadyClock::time_point>> take_composed();
   // Takes the view for encounter (peer, id) now, for a later capture_view.
   void stage_view(const std::string& peer, std::uint64_t encounter);
 
@@ -82,16 +86,7 @@ class SharedAgent : public protocol::AgentPort {
   RelativePoseConfig locate_;
   Trajectory trajectory_;
   std::map<std::pair<std::string, std::uint64_t>, Staged> staged_;
-  std::vector<LayerVersion> installed_;  // the foreign layers the working map holds
-  // Composer: the newest job only (knowledge only grows, so it contains the
-  // older ones), the encounters it carries, and its result for the scan loop.
-  struct Job {
-    SwarmAgent::ComposeJob job;
-    std::vector<std::uint64_t> encounters;
-  };
-  std::optional<Job> job_;
-  std::optional<std::pair<MultiResMap, Job>> ready_;
-  bool busy_ = false;
+  std::vector<std::pair<std::uint64_t, SteadyClock::time_point>> composed_;
   bool stop_ = false;
   std::condition_variable wake_composer_;
   std::thread composer_;  // last: starts once everything above exists

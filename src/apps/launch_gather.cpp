@@ -50,7 +50,8 @@ SwarmAgentResult agent_result(const fs::path& dir, const std::string& name, cons
   a.working_map = std::make_shared<const MultiResMap>(compose_working_map(*a.own_map, foreign));
   for (const char* key : {"scans_matched", "scans_held", "matches_rejected", "recovery_searches", "scans_received",
                           "scans_skipped", "cpu_seconds", "wall_seconds", "largest_scan_gap_ms",
-                          "largest_scan_gap_during_encounter_ms", "merge_latency_ms", "messages_rejected"})
+                          "largest_scan_gap_during_encounter_ms", "merge_latency_ms", "merge_ready_ms", "merges_late",
+                          "messages_rejected"})
     if (stats.contains(key)) a.counters[key] = stats[key];
   return a;
 }

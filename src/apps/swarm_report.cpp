@@ -32,15 +32,18 @@ std::string describe_encounter_events(const std::string& what, std::size_t event
 std::string describe_robot_processes(const SwarmRunResult& run, const std::vector<nlohmann::json>& agent_stats) {
   std::string text;
   std::vector<double> medians, maxima;
+  double late = 0.0;
   for (std::size_t i = 0; i < run.agents.size() && i < agent_stats.size(); ++i) {
     const nlohmann::json& s = agent_stats[i];
     auto number = [&](const char* key) { return s.contains(key) && s[key].is_number() ? s[key].get<double>() : 0.0; };
     std::string latency = "no merge";
-    if (s.contains("merge_latency_ms") && s["merge_latency_ms"].is_object()) {
-      const double median = s["merge_latency_ms"]["median"].get<double>(), max = s["merge_latency_ms"]["max"].get<double>();
-      latency = fmt::format("merge latency median {:.0f} ms, max {:.0f} ms", median, max);
+    if (s.contains("merge_ready_ms") && s["merge_ready_ms"].is_object()) {
+      const double median = s["merge_ready_ms"]["median"].get<double>(), max = s["merge_ready_ms"]["max"].get<double>();
+      latency = fmt::format("merged map ready median {:.0f} ms, max {:.0f} ms; {:.0f} late", median, max,
+                            number("merges_late"));
       medians.push_back(median);
       maxima.push_back(max);
+      late += number("merges_late");
     }
     text += fmt::format("  {}: {:.0f} scans processed, {:.0f} skipped; CPU {:.1f} s; largest scan gap during an "
                         "encounter {:.0f} ms; {}\n",
@@ -49,8 +52,9 @@ std::string describe_robot_processes(const SwarmRunResult& run, const std::vecto
   }
   std::sort(medians.begin(), medians.end());
   if (!maxima.empty())
-    text += fmt::format("  merge latency (proximity event to merged map in use): median of robots {:.0f} ms, max {:.0f} ms\n",
-                        medians[medians.size() / 2], *std::max_element(maxima.begin(), maxima.end()));
+    text += fmt::format("  merge latency (proximity event to merged map composed): median of robots {:.0f} ms, max "
+                        "{:.0f} ms; {:.0f} merge(s) not ready by their scan (swarm.merge_delay after the encounter's)\n",
+                        medians[medians.size() / 2], *std::max_element(maxima.begin(), maxima.end()), late);
   return text;
 }
 

@@ -260,6 +260,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"reject_bent_maps", DSS_SWARM_FIELD(bool, encounter.reject_bent_maps)}}},
       {"swarm",
        {{"remerge_interval", DSS_SWARM_FIELD(double, remerge_interval)},
+        {"merge_delay", DSS_SWARM_FIELD(double, merge_delay)},
         {"confirm", DSS_SWARM_FIELD(bool, confirm)},
         {"confirm_xy", DSS_SWARM_FIELD(double, confirm_xy)},
         {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)},

@@ -38,7 +38,13 @@ struct SwarmSession::Robot {
 
     std::optional<protocol::CapturedView> capture_view(const std::string&, std::uint64_t) override {
       if (!agent_.last_scan()) return std::nullopt;
-      return protocol::CapturedView{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr, nullptr, 0, nullptr};
+      protocol::CapturedView v{agent_.view(locate_), agent_.last_scan()->timestamp, nullptr, nullptr, 0, nullptr};
+      // A merge not yet in use is placed in already (as a robot process does).
+      if (auto fresher = agent_.fresher_placement_map()) {
+        v.view.map = fresher.get();
+        v.keep_alive = std::move(fresher);
+      }
+      return v;
     }
     MapSnapshot snapshot(const protocol::CapturedView&) override { return agent_.snapshot(); }  // nothing moved on
     std::vector<LayerVersion> inventory() const override { return agent_.inventory(); }
@@ -49,7 +55,7 @@ struct SwarmSession::Robot {
     void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
                std::uint64_t encounter) override {
       agent_.tie(snapshot.sender, at.view.scan_index, at.view.pose, sender_in_self, encounter);
-      agent_.merge(snapshot, sender_in_self);
+      if (agent_.absorb(snapshot, sender_in_self)) agent_.schedule_merge(encounter, at.stamp);
     }
     std::uint64_t graph_revision() const override { return agent_.graph_revision(); }
     MapMoves map_moves(const std::vector<TieScan>& ties) const override { return agent_.moves(ties); }
@@ -103,6 +109,7 @@ SwarmSession::SwarmSession(std::vector<AgentStream> streams, std::vector<Encount
     for (std::size_t j = 0; j < i; ++j)
       if (streams_[j].name == s.name) throw ConfigError("two agents are named " + s.name);
     agents_.push_back(std::make_unique<SwarmAgent>(s.name, agent_slam_config(config_.slam, s.name)));
+    agents_.back()->set_merge_delay(config_.merge_delay);
   }
   for (auto& agent : agents_) robots_.push_back(std::make_unique<Robot>(*agent, config_));
   for (const EncounterEvent& e : events_)
@@ -140,6 +147,7 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
     const LaserScan& scan = streams_[who].scans[next[who]++];
     tracks_[who].timestamps.push_back(scan.timestamp);
     AgentTrack& track = tracks_[who];
+    agents_[who]->install_due(scan.timestamp, true);
     track.steps.push_back(agents_[who]->process(scan));
     for (const PoseRevision& r : track.steps.back().revised) track.steps[r.index].pose = r.pose;
     robots_[who]->engine.announce_moves(when);
@@ -149,7 +157,10 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
   }
   // Every robot's last round, then the others' last word on where that left
   // their maps, and a round more that follows it.
-  for (auto& a : agents_) a->finish(false);
+  for (auto& a : agents_) {
+    a->install_due(std::numeric_limits<double>::infinity(), true);
+    a->finish(false);
+  }
   for (auto& r : robots_) r->engine.announce_moves(end, true);
   pump(end);
   // The poses as loop closing last optimized them, like `run` writes.

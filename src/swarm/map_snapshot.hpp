@@ -42,6 +42,12 @@ struct LayerVersion {
   bool operator==(const LayerVersion&) const = default;
 };
 
+inline std::vector<LayerVersion> layer_versions(const std::vector<MapLayer>& layers) {
+  std::vector<LayerVersion> out;
+  for (const MapLayer& l : layers) out.push_back({l.origin, l.version, l.hops});
+  return out;
+}
+
 // Where a robot's map lies now, for a robot that holds a copy of it: its
 // loop closures since the copy was taken moved its submaps (pieces) and the
 // scans where it met the holder. A few bytes per submap, against the

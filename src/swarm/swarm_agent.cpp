@@ -40,15 +40,16 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnap
   knowledge_.restore(saved);
   register_layers();
   if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+  working_layers_ = layer_versions(knowledge_.layers());
 }
 
 SlamStep SwarmAgent::process(const LaserScan& scan) {
   last_scan_ = scan;
   const std::size_t before = own_version();
   SlamStep step = slam_.process(scan);
-  if (jobs_out_ > 0 && own_version() != before)
-    inserted_since_job_.push_back(
-        {own_version(), step.pose, scan.laser_offset, scan_to_points(scan, slam_.config().points)});
+  if (own_version() != before)
+    schedule_.inserted(own_version(), scan.timestamp, step.pose, scan.laser_offset,
+                       scan_to_points(scan, slam_.config().points));
   sync_frames();
   return step;
 }
@@ -59,6 +60,7 @@ void SwarmAgent::finish(bool compose) {
   sync_frames();
   if (!compose) return;
   slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+  working_layers_ = layer_versions(knowledge_.layers());
 }
 
 int SwarmAgent::frame_id(const std::string& origin) {
@@ -148,6 +150,7 @@ std::vector<LayerVersion> SwarmAgent::inventory() const {
 bool SwarmAgent::merge(const MapSnapshot& snapshot, const Pose2& sender_in_self) {
   if (!absorb(snapshot, sender_in_self)) return false;
   slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
+  working_layers_ = layer_versions(knowledge_.layers());
   return true;
 }
 
@@ -158,26 +161,29 @@ bool SwarmAgent::absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self
   return true;
 }
 
-SwarmAgent::ComposeJob SwarmAgent::compose_job() const {
-  own_copy();
-  ++jobs_out_;
-  return {own_copy_, own_copy_version_, knowledge_.layers()};
+void SwarmAgent::schedule_merge(std::uint64_t encounter, double view_stamp,
+                                std::shared_ptr<const MultiResMap> own_at_view, std::size_t version_at_view) {
+  if (!own_at_view || !schedule_.replays_from(version_at_view, own_version())) {
+    own_copy();  // the scans since the view are gone: from the own map now
+    own_at_view = own_copy_;
+    version_at_view = own_copy_version_;
+  }
+  schedule_.add({std::move(own_at_view), version_at_view, knowledge_.layers()}, view_stamp, encounter);
+}
+
+std::optional<SwarmAgent::Installed> SwarmAgent::install_due(double stamp, bool compose_here) {
+  std::optional<MergeSchedule::Due> due = schedule_.take_due(stamp, compose_here);
+  if (!due) return std::nullopt;
+  slam_.replace_working_map(std::move(due->working));
+  working_layers_ = std::move(due->layers);
+  return Installed{std::move(due->encounters), due->late};
 }
 
 MultiResMap SwarmAgent::compose(const ComposeJob& job) { return compose_working_map(*job.own, job.foreign); }
 
-void SwarmAgent::cancel_job() {
-  jobs_out_ = std::max(0, jobs_out_ - 1);
-  if (jobs_out_ == 0) inserted_since_job_.clear();
-}
-
-void SwarmAgent::install(MultiResMap working, std::size_t own_version) {
-  for (const Inserted& s : inserted_since_job_)
-    if (s.version > own_version) working.insert_scan(s.pose, s.laser_offset, s.points);
-  slam_.replace_working_map(std::move(working));
-  jobs_out_ = std::max(0, jobs_out_ - 1);
-  // A later job's own map is at least this new: older insertions are in it.
-  std::erase_if(inserted_since_job_, [&](const Inserted& s) { return jobs_out_ == 0 || s.version <= own_version; });
+std::shared_ptr<const MultiResMap> SwarmAgent::fresher_placement_map() const {
+  if (loop_closing() || working_layers_ == layer_versions(knowledge_.layers())) return nullptr;
+  return std::make_shared<const MultiResMap>(compose_working_map(slam_.own_map(), knowledge_.layers()));
 }
 
 }  // namespace dsswarm

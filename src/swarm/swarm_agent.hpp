@@ -14,6 +14,7 @@
 #include "swarm/encounter.hpp"
 #include "swarm/live_map.hpp"
 #include "swarm/map_knowledge.hpp"
+#include "swarm/merge_schedule.hpp"
 
 namespace dsswarm {
 
@@ -84,22 +85,34 @@ class SwarmAgent {
   // Returns whether anything was new.
   bool merge(const MapSnapshot& snapshot, const Pose2& sender_in_self);
 
-  // Merging off the scan path, for a robot process whose scans keep coming:
-  // absorb() takes the layers in at once; compose_job() hands out what the
-  // working map is built from; compose() builds it on any thread (it needs
-  // nothing of the agent); install() swaps it in after replaying the scans
-  // this robot inserted since the job's own map was taken, so no evidence is
-  // lost and none is counted twice. merge() is the three in a row.
-  struct ComposeJob {
-    std::shared_ptr<const MultiResMap> own;
-    std::size_t own_version = 0;  // scans in `own`
-    std::vector<MapLayer> foreign;
-  };
+  // Merging on either path (merge_schedule.hpp): absorb() takes the layers
+  // in at once; schedule_merge() queues the merged map, composed from the own
+  // map as it stood at the encounter's scan (`own_at_view`, version
+  // `version_at_view`; nullptr: the own map now), to take effect `merge_delay`
+  // s after that scan; install_due() installs, before a scan, the newest
+  // merge due by its stamp. A robot process composes off the scan path
+  // (claim_merge_job / merge_job_composed); one process composes in
+  // install_due (`compose_here`).
+  using ComposeJob = MergeSchedule::Job;
   bool absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self);
-  ComposeJob compose_job() const;
+  void set_merge_delay(double seconds) { schedule_ = MergeSchedule(seconds); }
+  void schedule_merge(std::uint64_t encounter, double view_stamp,
+                      std::shared_ptr<const MultiResMap> own_at_view = nullptr, std::size_t version_at_view = 0);
+  struct Installed {
+    std::vector<std::uint64_t> encounters;
+    bool late = false;
+  };
+  std::optional<Installed> install_due(double stamp, bool compose_here);
+  bool merges_pending() const { return !schedule_.empty(); }
+  bool has_merge_job() const { return schedule_.has_unclaimed(); }
+  std::optional<MergeSchedule::Claimed> claim_merge_job() { return schedule_.claim(); }
+  void merge_job_composed(std::uint64_t ticket, MultiResMap working) { schedule_.composed(ticket, std::move(working)); }
   static MultiResMap compose(const ComposeJob& job);
-  void install(MultiResMap working, std::size_t own_version);
-  void cancel_job();  // a job that will never be installed (a newer one superseded it)
+  // The foreign layers the working map holds; the map to place a peer's scan
+  // in when it lacks some the robot holds already (a merge not yet due):
+  // composed from the own map now. nullptr: placement_map() holds them all.
+  const std::vector<LayerVersion>& working_layers() const { return working_layers_; }
+  std::shared_ptr<const MultiResMap> fresher_placement_map() const;
 
   // What /map shows with loop closure on, taken apart for composing off the
   // scan path (live_map.hpp): own submaps where the graph has them now, and
@@ -130,15 +143,8 @@ class SwarmAgent {
   std::map<std::string, int> frame_ids_;  // origin -> frame id in our graph
   std::optional<LaserScan> last_scan_;
   std::size_t version_base_ = 0;  // own map version when this run began (resumed)
-  // Scans inserted while a compose job is out (see install).
-  struct Inserted {
-    std::size_t version = 0;  // own_version() after it
-    Pose2 pose;
-    Pose2 laser_offset;
-    std::vector<ScanPoint> points;
-  };
-  std::vector<Inserted> inserted_since_job_;
-  mutable int jobs_out_ = 0;
+  MergeSchedule schedule_;
+  std::vector<LayerVersion> working_layers_;
   const MultiResMap& own_copy() const;
   // Frozen copy of the own map for snapshots, refreshed when the map grew.
   mutable std::shared_ptr<const MultiResMap> own_copy_;

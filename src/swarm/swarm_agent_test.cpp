@@ -27,24 +27,38 @@ std::vector<LaserScan> drive(const Pose2& from, const Pose2& to, int scans, std:
   return out;
 }
 
-TEST(SwarmAgent, ComposingOffTheScanPathLosesNoScanAndCountsNoneTwice) {
+// A merge found at scan 20 takes effect `merge_delay` s of log time later:
+// the scans between are localized in the map without it, and the merged map
+// installed then is what merging at scan 20 would have given, every later
+// scan inserted into it where the robot placed it (none lost, none twice).
+TEST(SwarmAgent, AMergeTakesEffectTheDelayAfterItsScanLosingNoScanAndCountingNoneTwice) {
   SwarmAgent a("a", SlamConfig{}), b("b", SlamConfig{});
+  a.set_merge_delay(1.0);
   const auto scans_a = drive({1.5, 1.5, 0.4}, {3.5, 2.0, 0.1}, 40, 1);
   for (const LaserScan& s : drive({8.5, 2.0, -2.5}, {5.0, 2.5, 2.9}, 20, 2)) b.process(s);
   for (int k = 0; k < 20; ++k) a.process(scans_a[k]);
   const Pose2 b_in_a = Pose2{1.5, 1.5, 0.4}.inverse() * Pose2{8.5, 2.0, -2.5};
   ASSERT_TRUE(a.absorb(b.snapshot(), b_in_a));
-  const SwarmAgent::ComposeJob job = a.compose_job();
-  // What merging at once would have given: the working map then, and every
-  // later scan inserted into it where the robot placed it.
-  MultiResMap expected = SwarmAgent::compose(job);
-  for (int k = 20; k < 40; ++k) {  // scans keep coming while it composes
-    const std::size_t before = a.slam().scans_inserted();
+  const double view_stamp = scans_a[19].timestamp;
+  a.schedule_merge(7, view_stamp);
+  MultiResMap expected = compose_working_map(a.slam().own_map(), a.knowledge().layers());
+  std::optional<SwarmAgent::Installed> installed;
+  int installed_before = -1;
+  for (int k = 20; k < 40; ++k) {
+    if (!installed && (installed = a.install_due(scans_a[k].timestamp, true))) installed_before = k;
+    if (!installed) {  // not yet in use: the map SLAM localizes in is the one without it
+      EXPECT_EQ(test::largest_difference(a.slam().own_map().finest(), a.slam().map().finest()), 0.0) << "scan " << k;
+    }
+    const std::size_t inserted = a.slam().scans_inserted();
     const SlamStep step = a.process(scans_a[k]);
-    if (a.slam().scans_inserted() != before) expected.insert_scan(step.pose, Pose2{}, scan_to_points(scans_a[k]));
+    if (a.slam().scans_inserted() != inserted) expected.insert_scan(step.pose, Pose2{}, scan_to_points(scans_a[k]));
   }
-  ASSERT_GT(a.slam().scans_inserted(), job.own_version);
-  a.install(SwarmAgent::compose(job), job.own_version);
+  ASSERT_TRUE(installed);
+  EXPECT_EQ(installed->encounters, std::vector<std::uint64_t>{7});
+  EXPECT_FALSE(installed->late);
+  // The first scan at least 1 s after the view's (0.1 s apart: scan 29 or 30).
+  EXPECT_GE(scans_a[static_cast<std::size_t>(installed_before)].timestamp, view_stamp + 1.0);
+  EXPECT_LT(scans_a[static_cast<std::size_t>(installed_before) - 1].timestamp, view_stamp + 1.0);
   for (int level = 0; level < expected.levels(); ++level)
     EXPECT_EQ(test::largest_difference(expected.level(level), a.slam().map().level(level)), 0.0) << "level " << level;
   // b's evidence is in the working map, not in the own map a shares.

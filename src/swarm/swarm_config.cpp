@@ -1,5 +1,7 @@
 #include "swarm/swarm_config.hpp"
 
+#include <cmath>
+
 #include "common/errors.hpp"
 
 namespace dsswarm {
@@ -14,6 +16,8 @@ void SwarmConfig::validate() const {
   slam.validate();
   encounter.validate();
   if (!(remerge_interval >= 0.0)) throw ConfigError("swarm.remerge_interval must be >= 0 s");
+  if (!(merge_delay >= 0.0) || !std::isfinite(merge_delay))
+    throw ConfigError("swarm.merge_delay must be a finite number of seconds >= 0");
   if (!(confirm_xy > 0.0) || !(confirm_theta > 0.0)) throw ConfigError("swarm.confirm_xy and confirm_theta must be > 0");
   if (!(exchange_timeout > 0.0)) throw ConfigError("swarm.exchange_timeout must be > 0 s");
   if (!(offer_timeout > 0.0)) throw ConfigError("swarm.offer_timeout must be > 0 s");

@@ -27,6 +27,12 @@ struct SwarmConfig {
   // Robots that met with an accepted merge skip further encounters for this
   // long (their maps have not changed much); rejected ones retry at once.
   double remerge_interval = 10.0;  // s
+  // A merge takes effect in the map a robot localizes in this long (log
+  // time) after the scan of its encounter (merge_schedule.hpp): in one
+  // process and in robot processes alike, so both localize the same scans in
+  // the same maps and decide the same. A robot process whose merge is not
+  // composed by then uses it when it is (counted as late). 0: at once.
+  double merge_delay = 2.0;  // s
   // false: encounters are ignored and every robot maps alone (the baseline
   // merging is measured against).
   bool merge = true;

@@ -2,7 +2,7 @@
 // swarm over the in-memory transport) and as robot processes on loopback
 // (`dsswarm launch --sim`, secured DDS). Both must run the same encounters,
 // accept the same ones and agree on each accepted transform: the processes
-// differ only in when a scan or a merged map arrives, not in the decision.
+// differ only in when a message arrives, not in the decision.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -22,11 +22,11 @@ constexpr double kMaxTranslation = 0.01;               // m
 constexpr double kMaxRotation = 0.1 * std::numbers::pi / 180.0;  // rad
 
 // The first 72 s of seed 1's run at twice real time: encounters 0-6, of
-// which 3 (44.6 s) and 6 (59.6 s) are accepted. In process a merged map is in
-// use at once; a robot process builds it in the background, and an encounter
-// before it is in use locates on a map without it. From 75 s on, encounters
-// follow accepted ones so closely that on a loaded machine they would. The
-// whole run at real time is compared in docs/swarm_processes.md.
+// which 3 (44.6 s) and 6 (59.6 s) are accepted. Both paths swap a merged map
+// in at the same scan (swarm.merge_delay after the encounter's), so the
+// launched robots localize the same scans in the same maps as in process
+// unless a merge is late. The whole run at real time, 3 and 8 robots, is
+// compared in docs/swarm_processes.md.
 const std::string kDuration = "72", kRate = "2";
 
 struct Encounter {
