@@ -12,6 +12,7 @@
 #include "agent/agent_runtime.hpp"
 #include "agent/paced_feed.hpp"
 #include "agent/proximity_player.hpp"
+#include "apps/log_input.hpp"
 #include "apps/sim_swarm_run.hpp"
 #include "apps/slam_options.hpp"
 #include "apps/start_time.hpp"
@@ -103,9 +104,7 @@ class LiveFeed : public agent::ScanFeed {
 
 // A log's segment as this robot plays it (file order, or reversed).
 AgentStream log_stream(const AgentArgs& a) {
-  SensorLog log = read_log(a.log);
-  for (const std::string& w : log.warnings) spdlog::warn("{}", w);
-  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  SensorLog log = read_input_log(a.log);
   std::vector<double> clock = play_clock(log.scans);
   AgentStream s{a.name, {}, {}};
   const double from = a.range.empty() ? 0.0 : a.range[0], to = a.range.empty() ? 1e300 : a.range[1];

@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/filter_plot.hpp"
+#include "apps/log_input.hpp"
 #include "common/errors.hpp"
 #include "config/config_json.hpp"
 #include "filter/scan_filter.hpp"
@@ -134,9 +135,7 @@ void run_filter(const FilterArgs& a) {
   read.odom_topic = a.odom_topic;
   read.use_tf_odometry = a.tf_odometry;
   read.odom_topic_named = a.odom_topic_named;
-  const SensorLog log = read_log(a.log, read);
-  for (const auto& w : log.warnings) spdlog::warn("{}", w);
-  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  const SensorLog log = read_input_log(a.log, read);
 
   const Filtered f = filter_scans(filter, log, a.no_odometry);
   const std::vector<DecisionRow>& rows = f.rows;

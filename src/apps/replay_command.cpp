@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "agent/paced_feed.hpp"
+#include "apps/log_input.hpp"
 #include "apps/start_time.hpp"
 #include "apps/stop_signal.hpp"
 #include "apps/swarm_scenario.hpp"
@@ -82,9 +83,7 @@ void check_args(const ReplayArgs& a) {
 }
 
 Playback log_playback(const ReplayArgs& a) {
-  SensorLog log = read_log(a.log);
-  for (const auto& w : log.warnings) spdlog::warn("{}", w);
-  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
+  SensorLog log = read_input_log(a.log);
   std::vector<double> stamps;
   for (const auto& s : log.scans) stamps.push_back(s.timestamp);
   return {a.log, std::move(log.scans), replay_schedule(stamps, a.rate, a.start)};

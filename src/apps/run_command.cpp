@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "apps/log_input.hpp"
 #include "apps/slam_options.hpp"
 #include "apps/slam_runner.hpp"
 #include "common/errors.hpp"
@@ -59,12 +60,10 @@ SensorLog read_run_log(const RunArgs& a, const std::optional<Pose2>& laser_offse
   read.carmen.laser_offset = laser_offset;
 
   const auto t0 = std::chrono::steady_clock::now();
-  SensorLog log = read_log(a.log, read);
+  SensorLog log = read_input_log(a.log, read);
   read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (laser_offset)  // bags too: the flag overrides whatever the log says
     for (auto& s : log.scans) s.laser_offset = *laser_offset;
-  for (const auto& w : log.warnings) spdlog::warn("{}", w);
-  if (log.scans.empty()) throw InputError(a.log + ": no laser scans");
   require_returns(log);
   if (a.max_scans > 0 && log.scans.size() > a.max_scans) log.scans.resize(a.max_scans);
   return log;
