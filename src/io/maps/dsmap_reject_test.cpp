@@ -14,6 +14,7 @@
 #include "common/errors.hpp"
 #include "common/rng.hpp"
 #include "io/maps/dsmap.hpp"
+#include "io/maps/dsmap_frame_util.hpp"
 #include "io/maps/dsmap_test_util.hpp"
 #include "sim/scenario.hpp"
 
@@ -23,25 +24,8 @@ namespace {
 using Bytes = std::vector<std::uint8_t>;
 using namespace dsmap_test;
 
-
-// A file around a hand-made payload, as encode_dsmap frames one: lets the
-// tests reach the payload checks past the checksum. Hand-made payloads have
-// version 1's layout (no piece counts) unless they say otherwise.
-Bytes frame(const Bytes& payload, std::uint16_t version = 1) {
-  Bytes c(ZSTD_compressBound(payload.size()));
-  c.resize(ZSTD_compress(c.data(), c.size(), payload.data(), payload.size(), 3));
-  Bytes out = {'D', 'S', 'M', 'A', 'P'};
-  auto le = [&](std::uint64_t v, int n) {
-    for (int i = 0; i < n; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-  };
-  le(version, 2);
-  le(crc32_z(0, payload.data(), payload.size()), 4);
-  le(crc32_z(0, c.data(), c.size()), 4);
-  le(payload.size(), 8);
-  le(c.size(), 8);
-  out.insert(out.end(), c.begin(), c.end());
-  return out;
-}
+// Hand-made payloads have version 1's layout (no piece counts) unless they say otherwise.
+Bytes frame(const Bytes& payload, std::uint16_t version = 1) { return frame_dsmap_payload(payload, version); }
 
 // Hand-made payloads, field by field.
 struct PayloadBuilder {
