@@ -231,21 +231,21 @@ SwarmEvaluation evaluate_swarm(const SwarmOutput& output, const std::vector<Rela
   return ev;
 }
 
-std::string format_swarm_evaluation(const SwarmEvaluation& ev) {
-  std::string out = fmt::format(
-      "swarm evaluation: {} agents, {} relations (relation metric of Kümmerle et al. 2009; max time difference "
-      "{} s)\n\n",
-      ev.agents.size(), ev.relations_total, ev.options.max_time_diff);
+namespace {
 
-  out += "per agent, own frame (relations whose two timestamps the agent covers)\n";
+std::string agents_table(const SwarmEvaluation& ev) {
+  std::string out = "per agent, own frame (relations whose two timestamps the agent covers)\n";
   out += fmt::format("  {:<14} {:>7} {:>5} {:>9} {:>22} {:>22}\n", "agent", "poses", "joint", "relations",
                      "trans mean ± std (m)", "rot mean ± std (deg)");
   for (const AgentRelationScore& a : ev.agents) {
     out += fmt::format("  {:<14} {:>7} {:>5} {:>9} {}\n", a.name, a.poses, a.joint ? "yes" : "no",
                        a.relations_covered, metric_columns(a.metrics));
   }
+  return out;
+}
 
-  out += "\ncross-agent, joint frame (t1 covered by one agent only, t2 by another only)\n";
+std::string cross_table(const SwarmEvaluation& ev) {
+  std::string out = "\ncross-agent, joint frame (t1 covered by one agent only, t2 by another only)\n";
   out += fmt::format("  {:<24} {:>9} {:>9} {}  {:>22}\n", "agents", "relations", "no joint",
                      fmt::format("{:>22} {:>22}", "trans mean ± std (m)", "rot mean ± std (deg)"),
                      "best frame: trans (m)");
@@ -259,8 +259,11 @@ std::string format_swarm_evaluation(const SwarmEvaluation& ev) {
                      metric_columns(ev.cross));
   out += "  (best frame: each pair's frame fitted to its cross relations in hindsight; what remains there comes from\n"
          "   the agents' own trajectories, their own error and their maps' disagreement, which no frame removes)\n";
+  return out;
+}
 
-  out += fmt::format(
+std::string encounters_table(const SwarmEvaluation& ev) {
+  std::string out = fmt::format(
       "\nencounters: relative pose of b w.r.t. a (pose_a⁻¹ ⊕ transform ⊕ pose_b) against relation truth "
       "(same scan, one relation, or a chain of at most {}; checked up to {} s from the exchanged scans when they "
       "are no relation's timestamps: 'shift')\n",
@@ -288,6 +291,16 @@ std::string format_swarm_evaluation(const SwarmEvaluation& ev) {
   }
   out += "\n  (errors of rejected encounters are those of the candidate they turned down)\n";
   return out;
+}
+
+}  // namespace
+
+std::string format_swarm_evaluation(const SwarmEvaluation& ev) {
+  return fmt::format(
+             "swarm evaluation: {} agents, {} relations (relation metric of Kümmerle et al. 2009; max time "
+             "difference {} s)\n\n",
+             ev.agents.size(), ev.relations_total, ev.options.max_time_diff) +
+         agents_table(ev) + cross_table(ev) + encounters_table(ev);
 }
 
 json to_json(const SwarmEvaluation& ev) {
