@@ -160,6 +160,42 @@ void McapWriter::flush_chunk() {
   chunk_index_.clear();
 }
 
+Bytes McapWriter::statistics_record() const {
+  Bytes statistics;
+  put(statistics, message_count_);
+  put(statistics, static_cast<std::uint16_t>(schema_names_.size()));
+  put(statistics, static_cast<std::uint32_t>(channel_topics_.size()));
+  put(statistics, std::uint32_t{0});  // attachments
+  put(statistics, std::uint32_t{0});  // metadata
+  put(statistics, static_cast<std::uint32_t>(chunk_indexes_.size()));
+  put(statistics, first_time_);
+  put(statistics, last_time_);
+  put(statistics, static_cast<std::uint32_t>(message_counts_.size() * 10));
+  for (const auto& [channel, count] : message_counts_) {
+    put(statistics, channel);
+    put(statistics, count);
+  }
+  return statistics;
+}
+
+Bytes McapWriter::chunk_index_record(const ChunkIndexEntry& e) const {
+  Bytes c;
+  put(c, e.start_time);
+  put(c, e.end_time);
+  put(c, e.offset);
+  put(c, e.length);
+  put(c, static_cast<std::uint32_t>(e.message_index_offsets.size() * 10));
+  for (const auto& [channel, offset] : e.message_index_offsets) {
+    put(c, channel);
+    put(c, offset);
+  }
+  put(c, e.message_index_length);
+  put_string(c, compression_name(chunking_));
+  put(c, e.compressed_size);
+  put(c, e.uncompressed_size);
+  return c;
+}
+
 std::uint64_t McapWriter::write_summary() {
   // Grouped by opcode, each group listed in a SummaryOffset record.
   std::vector<std::tuple<Op, std::uint64_t, std::uint64_t>> groups;
@@ -176,40 +212,10 @@ std::uint64_t McapWriter::write_summary() {
   for (std::size_t id = 0; id < channel_topics_.size(); ++id) {
     channels.push_back(channel_record(static_cast<std::uint16_t>(id)));
   }
-  Bytes statistics;
-  put(statistics, message_count_);
-  put(statistics, static_cast<std::uint16_t>(schema_names_.size()));
-  put(statistics, static_cast<std::uint32_t>(channel_topics_.size()));
-  put(statistics, std::uint32_t{0});  // attachments
-  put(statistics, std::uint32_t{0});  // metadata
-  put(statistics, static_cast<std::uint32_t>(chunk_indexes_.size()));
-  put(statistics, first_time_);
-  put(statistics, last_time_);
-  put(statistics, static_cast<std::uint32_t>(message_counts_.size() * 10));
-  for (const auto& [channel, count] : message_counts_) {
-    put(statistics, channel);
-    put(statistics, count);
-  }
-  for (const ChunkIndexEntry& e : chunk_indexes_) {
-    Bytes c;
-    put(c, e.start_time);
-    put(c, e.end_time);
-    put(c, e.offset);
-    put(c, e.length);
-    put(c, static_cast<std::uint32_t>(e.message_index_offsets.size() * 10));
-    for (const auto& [channel, offset] : e.message_index_offsets) {
-      put(c, channel);
-      put(c, offset);
-    }
-    put(c, e.message_index_length);
-    put_string(c, compression_name(chunking_));
-    put(c, e.compressed_size);
-    put(c, e.uncompressed_size);
-    chunk_indexes.push_back(std::move(c));
-  }
+  for (const ChunkIndexEntry& e : chunk_indexes_) chunk_indexes.push_back(chunk_index_record(e));
   group(Op::Schema, schemas);
   group(Op::Channel, channels);
-  group(Op::Statistics, {statistics});
+  group(Op::Statistics, {statistics_record()});
   group(Op::ChunkIndex, chunk_indexes);
   const std::uint64_t offsets_start = file_.size();
   for (const auto& [op, start, length] : groups) {

@@ -37,6 +37,8 @@ class McapWriter {
   void flush_chunk();
   std::vector<std::uint8_t> schema_record(std::uint16_t id) const;
   std::vector<std::uint8_t> channel_record(std::uint16_t id) const;
+  std::vector<std::uint8_t> statistics_record() const;
+  std::vector<std::uint8_t> chunk_index_record(const ChunkIndexEntry& e) const;
   std::uint64_t write_summary();  // returns where its SummaryOffset records start
 
   Chunking chunking_;
