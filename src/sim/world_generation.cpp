@@ -67,6 +67,54 @@ void place_clutter(const WorldConfig& config, const Room& room, const Box& lane,
   solids.insert(solids.end(), placed.begin(), placed.end());
 }
 
+// Walls, rooms and the lanes behind their doors, as generate_world lays them out.
+struct WorldBuilder {
+  const WorldConfig& config;
+  const Layout l;
+  const double half_t;
+  Rng& rng;
+  std::vector<Box> solids;
+  BuildingLayout layout;
+  std::vector<Box> lanes;
+
+  // Walls are thin boxes centred on their lines, overlapping at the corners.
+  void horizontal_wall(double xa, double xb, double y) { solids.push_back({{xa, y - half_t}, {xb, y + half_t}}); }
+  void vertical_wall(double x, double ya, double yb) { solids.push_back({{x - half_t, ya}, {x + half_t, yb}}); }
+
+  // Row `row` of rooms from y0: its walls and each room with a door onto its corridor.
+  void room_row(int row, double y0) {
+    const double x0 = l.spine_width, y1 = y0 + l.room_depth, w = config.width;
+    const bool corridor_above = row % 2 == 0;
+    if (l.spine_width > 0) vertical_wall(x0, y0 - half_t, y1 + half_t);
+    for (int i = 1; i < config.rooms_x; ++i) vertical_wall(x0 + i * l.room_width, y0 - half_t, y1 + half_t);
+    if (!corridor_above && row + 1 < config.rooms_y) horizontal_wall(x0 - half_t, w + half_t, y1);
+    for (int i = 0; i < config.rooms_x; ++i) room(row, x0 + i * l.room_width, y0, corridor_above);
+  }
+
+  void room(int row, double xa, double y0, bool corridor_above) {
+    const double xb = xa + l.room_width, y1 = y0 + l.room_depth;
+    const double door_wall_y = corridor_above ? y1 : y0;
+    const Eigen::Vector2d into_room(0.0, corridor_above ? -1.0 : 1.0);
+    const double lane_depth = std::min(kLaneMaxDepth, l.room_depth - 1.0);
+    const double margin = config.door_width / 2 + half_t + kDoorCornerMargin;
+    const double door_x = rng.uniform(xa + margin, xb - margin);
+    horizontal_wall(xa - half_t, door_x - config.door_width / 2, door_wall_y);
+    horizontal_wall(door_x + config.door_width / 2, xb + half_t, door_wall_y);
+
+    Room r;
+    r.area = {{xa, y0}, {xb, y1}};
+    r.door = {door_x, door_wall_y};
+    r.into_room = into_room;
+    r.inside_door = r.door + kInsideDoorDepth * into_room;
+    r.safe_spot = r.door + (lane_depth - kSafeSpotBeforeLaneEnd) * into_room;
+    r.corridor = row / 2;
+    layout.rooms.push_back(r);
+    const Eigen::Vector2d lane_end = r.door + lane_depth * into_room;
+    lanes.push_back({{door_x - kLaneHalfWidth, std::min(door_wall_y, lane_end.y())},
+                     {door_x + kLaneHalfWidth, std::max(door_wall_y, lane_end.y())}});
+  }
+};
+
 }  // namespace
 
 void validate(const WorldConfig& c) {
@@ -90,61 +138,26 @@ void validate(const WorldConfig& c) {
 World generate_world(const WorldConfig& config) {
   validate(config);
   Rng rng(config.seed);
-  const Layout l = layout_of(config);
-  const double w = config.width, h = config.height, t = config.wall_thickness, half_t = t / 2;
-  const double cw = config.corridor_width, x0 = l.spine_width;
-
-  std::vector<Box> solids;
-  // Walls are thin boxes centred on their lines, overlapping at the corners.
-  auto horizontal_wall = [&](double xa, double xb, double y) { solids.push_back({{xa, y - half_t}, {xb, y + half_t}}); };
-  auto vertical_wall = [&](double x, double ya, double yb) { solids.push_back({{x - half_t, ya}, {x + half_t, yb}}); };
-  horizontal_wall(-half_t, w + half_t, 0.0);
-  horizontal_wall(-half_t, w + half_t, h);
-  vertical_wall(0.0, -half_t, h + half_t);
-  vertical_wall(w, -half_t, h + half_t);
-
-  BuildingLayout layout;
-  std::vector<Box> lanes;
+  WorldBuilder b{config, layout_of(config), config.wall_thickness / 2, rng, {}, {}, {}};
+  const double w = config.width, h = config.height, half_t = b.half_t;
+  b.horizontal_wall(-half_t, w + half_t, 0.0);
+  b.horizontal_wall(-half_t, w + half_t, h);
+  b.vertical_wall(0.0, -half_t, h + half_t);
+  b.vertical_wall(w, -half_t, h + half_t);
   double y = 0.0;
   for (int row = 0; row < config.rooms_y; ++row) {
-    const double y0 = y, y1 = y + l.room_depth;
-    const bool corridor_above = row % 2 == 0;
-    if (l.spine_width > 0) vertical_wall(x0, y0 - half_t, y1 + half_t);
-    for (int i = 1; i < config.rooms_x; ++i) vertical_wall(x0 + i * l.room_width, y0 - half_t, y1 + half_t);
-    if (!corridor_above && row + 1 < config.rooms_y) horizontal_wall(x0 - half_t, w + half_t, y1);
-
-    const double door_wall_y = corridor_above ? y1 : y0;
-    const Eigen::Vector2d into_room(0.0, corridor_above ? -1.0 : 1.0);
-    const double lane_depth = std::min(kLaneMaxDepth, l.room_depth - 1.0);
-    for (int i = 0; i < config.rooms_x; ++i) {
-      const double xa = x0 + i * l.room_width, xb = xa + l.room_width;
-      const double margin = config.door_width / 2 + half_t + kDoorCornerMargin;
-      const double door_x = rng.uniform(xa + margin, xb - margin);
-      horizontal_wall(xa - half_t, door_x - config.door_width / 2, door_wall_y);
-      horizontal_wall(door_x + config.door_width / 2, xb + half_t, door_wall_y);
-
-      Room room;
-      room.area = {{xa, y0}, {xb, y1}};
-      room.door = {door_x, door_wall_y};
-      room.into_room = into_room;
-      room.inside_door = room.door + kInsideDoorDepth * into_room;
-      room.safe_spot = room.door + (lane_depth - kSafeSpotBeforeLaneEnd) * into_room;
-      room.corridor = row / 2;
-      layout.rooms.push_back(room);
-      const Eigen::Vector2d lane_end = room.door + lane_depth * into_room;
-      lanes.push_back({{door_x - kLaneHalfWidth, std::min(door_wall_y, lane_end.y())},
-                       {door_x + kLaneHalfWidth, std::max(door_wall_y, lane_end.y())}});
-    }
-    y = y1;
-    if (corridor_above) {
-      const double yc = y + cw / 2;
-      layout.corridors.push_back({{cw / 2, yc}, {w - cw / 2, yc}});
+    b.room_row(row, y);
+    y += b.l.room_depth;
+    if (row % 2 == 0) {  // the corridor above it
+      const double cw = config.corridor_width, yc = y + cw / 2;
+      b.layout.corridors.push_back({{cw / 2, yc}, {w - cw / 2, yc}});
       y += cw;
     }
   }
   // Clutter after the walls, so the door positions do not depend on clutter_per_room.
-  for (std::size_t k = 0; k < layout.rooms.size(); ++k) place_clutter(config, layout.rooms[k], lanes[k], rng, solids);
-  return World({}, std::move(solids), std::move(layout));
+  for (std::size_t k = 0; k < b.layout.rooms.size(); ++k)
+    place_clutter(config, b.layout.rooms[k], b.lanes[k], rng, b.solids);
+  return World({}, std::move(b.solids), std::move(b.layout));
 }
 
 }  // namespace dsswarm
