@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <utility>
 
-#include "swarm/map_merge.hpp"
-
 namespace dsswarm::agent {
+
 SharedAgent::SharedAgent(std::unique_ptr<SwarmAgent> agent, const RelativePoseConfig& locate)
     : agent_(std::move(agent)),
       locate_(locate),
@@ -76,8 +75,8 @@ protocol::CapturedView SharedAgent::up_to_date(Staged staged) const {
     std::lock_guard lock(mutex_);
     layers = agent_->knowledge().layers();
   }
-  if (staged.layers == layer_versions(layers)) return std::move(staged.view);
-  auto map = std::make_shared<const MultiResMap>(compose_working_map(*staged.view.own, layers));
+  auto map = SwarmAgent::composed_if_behind(*staged.view.own, staged.layers, layers);
+  if (!map) return std::move(staged.view);
   staged.view.view.map = map.get();
   staged.view.keep_alive = map;
   return std::move(staged.view);
@@ -161,7 +160,7 @@ void SharedAgent::compose_loop() {
     if (stop_) return;
     std::optional<MergeSchedule::Claimed> claimed = agent_->claim_merge_job();
     lock.unlock();
-    MultiResMap working = SwarmAgent::compose(claimed->job);
+    MultiResMap working = MergeSchedule::compose(claimed->job);
     lock.lock();
     agent_->merge_job_composed(claimed->ticket, std::move(working));
     composed_.emplace_back(claimed->encounter, SteadyClock::now());

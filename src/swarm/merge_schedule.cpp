@@ -7,9 +7,11 @@
 
 namespace dsswarm {
 
+MultiResMap MergeSchedule::compose(const Job& job) { return compose_working_map(*job.own, job.foreign); }
+
 void MergeSchedule::inserted(std::size_t version, double stamp, const Pose2& pose, const Pose2& laser_offset,
                              std::vector<ScanPoint> points) {
-  if (delay_ <= 0.0 && entries_.empty()) return;  // no job can start before it
+  if (!keeps_scans()) return;  // no job can start before it
   newest_stamp_ = inserted_.empty() ? stamp : std::max(newest_stamp_, stamp);
   inserted_.push_back({version, stamp, pose, laser_offset, std::move(points)});
   prune();
@@ -62,7 +64,7 @@ std::optional<MergeSchedule::Due> MergeSchedule::take_due(double stamp, bool com
   }
   if (!take) return std::nullopt;
   Entry& e = entries_[*take];
-  Due due{e.working ? std::move(*e.working) : compose_working_map(*e.job.own, e.job.foreign), {}, {}, false};
+  Due due{e.working ? std::move(*e.working) : compose(e.job), {}, {}, false};
   due.layers = layer_versions(e.job.foreign);
   for (const Inserted& s : inserted_)
     if (s.version > e.job.own_version) due.working.insert_scan(s.pose, s.laser_offset, s.points);
@@ -79,7 +81,7 @@ void MergeSchedule::prune() {
   std::size_t needed = std::numeric_limits<std::size_t>::max();  // the oldest own map a job starts from
   for (const Entry& e : entries_) needed = std::min(needed, e.job.own_version);
   while (!inserted_.empty() && inserted_.front().version <= needed &&
-         (inserted_.front().stamp < newest_stamp_ - delay_ || (delay_ <= 0.0 && entries_.empty())))
+         (inserted_.front().stamp < newest_stamp_ - delay_ || !keeps_scans()))
     inserted_.pop_front();
 }
 

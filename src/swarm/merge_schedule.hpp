@@ -28,6 +28,7 @@ class MergeSchedule {
     std::size_t own_version = 0;  // scans in `own`
     std::vector<MapLayer> foreign;
   };
+  static MultiResMap compose(const Job& job);
   // A merged map due now, the scans since its own map replayed into it.
   struct Due {
     MultiResMap working;
@@ -40,7 +41,9 @@ class MergeSchedule {
   double delay() const { return delay_; }
 
   // Every scan inserted into the own map (version: scans in it after this one).
-  // Kept as long as a job may still start from before it.
+  // Kept as long as a job may still start from before it; keeps_scans()
+  // false: none is (merges at once, none pending), so the caller may skip it.
+  bool keeps_scans() const { return delay_ > 0.0 || !entries_.empty(); }
   void inserted(std::size_t version, double stamp, const Pose2& pose, const Pose2& laser_offset,
                 std::vector<ScanPoint> points);
   // Whether a job may start from the own map at `version` (current: the own

@@ -47,7 +47,7 @@ SlamStep SwarmAgent::process(const LaserScan& scan) {
   last_scan_ = scan;
   const std::size_t before = own_version();
   SlamStep step = slam_.process(scan);
-  if (own_version() != before)
+  if (own_version() != before && schedule_.keeps_scans())
     schedule_.inserted(own_version(), scan.timestamp, step.pose, scan.laser_offset,
                        scan_to_points(scan, slam_.config().points));
   sync_frames();
@@ -179,11 +179,16 @@ std::optional<SwarmAgent::Installed> SwarmAgent::install_due(double stamp, bool 
   return Installed{std::move(due->encounters), due->late};
 }
 
-MultiResMap SwarmAgent::compose(const ComposeJob& job) { return compose_working_map(*job.own, job.foreign); }
-
 std::shared_ptr<const MultiResMap> SwarmAgent::fresher_placement_map() const {
-  if (loop_closing() || working_layers_ == layer_versions(knowledge_.layers())) return nullptr;
-  return std::make_shared<const MultiResMap>(compose_working_map(slam_.own_map(), knowledge_.layers()));
+  if (loop_closing()) return nullptr;  // the own map is placed in: nothing to bring up to date
+  return composed_if_behind(slam_.own_map(), working_layers_, knowledge_.layers());
+}
+
+std::shared_ptr<const MultiResMap> SwarmAgent::composed_if_behind(const MultiResMap& own,
+                                                                 const std::vector<LayerVersion>& held,
+                                                                 const std::vector<MapLayer>& layers) {
+  if (held == layer_versions(layers)) return nullptr;
+  return std::make_shared<const MultiResMap>(compose_working_map(own, layers));
 }
 
 }  // namespace dsswarm

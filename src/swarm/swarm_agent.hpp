@@ -91,9 +91,8 @@ class SwarmAgent {
   // `version_at_view`; nullptr: the own map now), to take effect `merge_delay`
   // s after that scan; install_due() installs, before a scan, the newest
   // merge due by its stamp. A robot process composes off the scan path
-  // (claim_merge_job / merge_job_composed); one process composes in
+  // (claim_merge_job, MergeSchedule::compose, merge_job_composed); one process composes in
   // install_due (`compose_here`).
-  using ComposeJob = MergeSchedule::Job;
   bool absorb(const MapSnapshot& snapshot, const Pose2& sender_in_self);
   void set_merge_delay(double seconds) { schedule_ = MergeSchedule(seconds); }
   void schedule_merge(std::uint64_t encounter, double view_stamp,
@@ -107,12 +106,16 @@ class SwarmAgent {
   bool has_merge_job() const { return schedule_.has_unclaimed(); }
   std::optional<MergeSchedule::Claimed> claim_merge_job() { return schedule_.claim(); }
   void merge_job_composed(std::uint64_t ticket, MultiResMap working) { schedule_.composed(ticket, std::move(working)); }
-  static MultiResMap compose(const ComposeJob& job);
   // The foreign layers the working map holds; the map to place a peer's scan
   // in when it lacks some the robot holds already (a merge not yet due):
   // composed from the own map now. nullptr: placement_map() holds them all.
   const std::vector<LayerVersion>& working_layers() const { return working_layers_; }
   std::shared_ptr<const MultiResMap> fresher_placement_map() const;
+  // own ⊕ `layers` if a map holding `held` lacks some of them, else nullptr:
+  // the one rule both paths bring a view's map up to date by.
+  static std::shared_ptr<const MultiResMap> composed_if_behind(const MultiResMap& own,
+                                                               const std::vector<LayerVersion>& held,
+                                                               const std::vector<MapLayer>& layers);
 
   // What /map shows with loop closure on, taken apart for composing off the
   // scan path (live_map.hpp): own submaps where the graph has them now, and
