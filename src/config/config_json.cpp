@@ -264,6 +264,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"confirm", DSS_SWARM_FIELD(bool, confirm)},
         {"confirm_xy", DSS_SWARM_FIELD(double, confirm_xy)},
         {"confirm_theta", DSS_SWARM_FIELD(double, confirm_theta)},
+        {"confirm_by_directions", DSS_SWARM_FIELD(bool, confirm_by_directions)},
         {"repeat_xy", DSS_SWARM_FIELD(double, repeat_xy)},
         {"repeat_theta", DSS_SWARM_FIELD(double, repeat_theta)},
         {"repeat_retries", DSS_SWARM_FIELD(int, repeat_retries)},

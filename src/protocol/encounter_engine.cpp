@@ -8,6 +8,7 @@
 
 #include "common/hash.hpp"
 #include "common/rng.hpp"
+#include "protocol/confirmation.hpp"
 #include "protocol/encounter_exchange.hpp"
 
 namespace dsswarm::protocol {
@@ -229,12 +230,13 @@ void EncounterEngine::decide(Exchange& x, double now) {
   o.estimate = decide_encounter(a_pose, b_pose, x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine,
                                 config_.encounter);
   o.decided = x.decided = true;
+  if (config_.confirm && config_.confirm_by_directions) confirm_by_directions(x);
   const Offered offered{x.mine.view.pose, x.my_inventory}, received{x.offer->pose, x.offer->inventory};
   repeats_.decided(x.peer, x.id, x.self_is_a ? offered : received, x.self_is_a ? received : offered,
                    o.estimate.accepted);
   x.accepted = o.estimate.accepted;
   o.reason = o.estimate.reason;
-  if (x.accepted && config_.confirm) confirm(x);
+  if (x.accepted && config_.confirm && o.confirmed_by.empty()) confirm(x);
   if (!x.accepted) {
     finish({x.peer, x.id}, EncounterOutcome::End::rejected, o.reason, now);
     return;
@@ -243,14 +245,28 @@ void EncounterEngine::decide(Exchange& x, double now) {
   if (x.incoming.complete()) absorb_transfer(x, now);
 }
 
+// The pending lists travel in the placements, so both robots see the same
+// ones here; A's list is taken first on both sides.
+void EncounterEngine::confirm_by_directions(Exchange& x) {
+  EncounterOutcome& o = x.outcome;
+  const Placement& theirs = *x.their_placement;
+  const std::vector<Pose2>& a_pending = x.self_is_a ? x.my_pending : theirs.pending;
+  const std::vector<Pose2>& b_pending = x.self_is_a ? theirs.pending : x.my_pending;
+  const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
+  const std::optional<Pose2> t =
+      pending_confirmed_by_directions(o.estimate, b_pose, a_pending, b_pending, confirm_tolerance());
+  if (!t) return;
+  o.estimate.accepted = true;
+  o.estimate.reason.clear();
+  o.estimate.b_frame_in_a = o.estimate.b_frame_in_a_near = *t;
+  o.confirmed_by = "earlier encounter, by each direction of this one";
+}
+
 void EncounterEngine::confirm(Exchange& x) {
   EncounterOutcome& o = x.outcome;
   const Pose2 t = o.estimate.b_frame_in_a;
   const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
-  auto agrees = [&](const Pose2& other) {
-    const Pose2 d = between(other * b_pose, t * b_pose);
-    return std::hypot(d.x, d.y) <= config_.confirm_xy && std::abs(normalize_angle(d.theta)) <= config_.confirm_theta;
-  };
+  auto agrees = [&](const Pose2& other) { return agrees_at_b(t, other, b_pose, confirm_tolerance()); };
   // What either robot holds, so both come to the same answer.
   const Placement& theirs = *x.their_placement;
   const bool by_known = (x.my_known && agrees(*x.my_known)) || (theirs.known_transform && agrees(*theirs.known_transform));

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "protocol/confirmation.hpp"
 #include "protocol/followers.hpp"
 #include "protocol/gate.hpp"
 #include "protocol/messages.hpp"
@@ -82,7 +83,7 @@ struct EncounterOutcome {
   End end = End::abandoned;
   std::string reason;        // why not accepted
   Decline decline = Decline::none;
-  std::string confirmed_by;  // accepted: "known transform" or "earlier encounter"
+  std::string confirmed_by;  // accepted: "known transform" or "earlier encounter[, by each direction of this one]"
   EncounterEstimate estimate;  // set once decided
   bool decided = false;
   Pose2 self_pose, peer_pose;  // each robot's pose in its own frame at the scans exchanged
@@ -154,6 +155,8 @@ class EncounterEngine {
   void on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now);
   void decide(Exchange& x, double now);
   void confirm(Exchange& x);
+  void confirm_by_directions(Exchange& x);
+  ConfirmTolerance confirm_tolerance() const { return {config_.confirm_xy, config_.confirm_theta}; }
   void send_transfer(Exchange& x);
   void absorb_transfer(Exchange& x, double now);
   void send(Exchange* x, const std::string& recipient, Body body);

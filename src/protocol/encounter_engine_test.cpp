@@ -172,6 +172,49 @@ TEST(EncounterEngine, AFirstVerifiedEstimateWaitsForASecondThatAgrees) {
   EXPECT_EQ(p.ea.take_outcomes()[0].confirmed_by, "known transform");
 }
 
+// A second encounter whose directions each verify but disagree with each
+// other (B reports its pose 12 cm off, so its own placement of A and A's of
+// its scan part by that much) confirms the pending transform both lie near.
+TEST(EncounterEngine, ASecondEncounterWhoseDirectionsDisagreeButEachAgreesConfirmsThePendingTransform) {
+  for (const bool by_directions : {true, false}) {
+    SCOPED_TRACE(by_directions ? "confirm_by_directions" : "without");
+    SwarmConfig config;
+    config.confirm_by_directions = by_directions;
+    Pair p(config);
+    p.ea.start("b", 1, 0.0);
+    p.eb.start("a", 1, 0.0);
+    p.pump(0.0);
+    const auto first = p.ea.take_outcomes();
+    p.eb.take_outcomes();
+    ASSERT_EQ(first.size(), 1u);
+    ASSERT_NE(first[0].reason.find("unconfirmed: "), std::string::npos) << first[0].reason;
+    p.b.view.pose = p.b.view.pose * Pose2(0.12, 0.0, 0.0);
+    p.b.version = 12;
+    p.ea.start("b", 2, 1.0);
+    p.eb.start("a", 2, 1.0);
+    p.pump(1.0);
+    const auto second_a = p.ea.take_outcomes(), second_b = p.eb.take_outcomes();
+    ASSERT_EQ(second_a.size(), 1u);
+    ASSERT_EQ(second_b.size(), 1u);
+    EXPECT_GT(second_a[0].estimate.disagreement_xy, config.encounter.agree_xy);
+    if (!by_directions) {
+      EXPECT_EQ(second_a[0].end, End::rejected);
+      EXPECT_NE(second_a[0].reason.find("the two directions disagree"), std::string::npos) << second_a[0].reason;
+      EXPECT_EQ(p.a.merges + p.b.merges, 0);
+      continue;
+    }
+    ASSERT_EQ(second_a[0].end, End::accepted) << second_a[0].reason;
+    ASSERT_EQ(second_b[0].end, End::accepted) << second_b[0].reason;
+    EXPECT_EQ(second_a[0].confirmed_by, "earlier encounter, by each direction of this one");
+    EXPECT_EQ(second_b[0].confirmed_by, second_a[0].confirmed_by);
+    // Merged on the first, verified transform, by both robots.
+    EXPECT_EQ(p.a.merges, 1);
+    EXPECT_EQ(p.b.merges, 1);
+    EXPECT_TRUE(same(p.a.last_transform, first[0].estimate.b_frame_in_a));
+    EXPECT_TRUE(same(p.b.last_transform, first[0].estimate.b_frame_in_a.inverse()));
+  }
+}
+
 TEST(EncounterEngine, WithinTheRemergeIntervalBothDecline) {
   Pair p(unconfirmed());
   p.ea.start("b", 1, 0.0);

@@ -74,6 +74,8 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
   // Both directions as estimates of B's frame in A's frame.
   const Pose2 from_a = e.a_locates_b.best.pose * b_pose.inverse();
   const Pose2 from_b = (e.b_locates_a.best.pose * a_pose.inverse()).inverse();
+  e.b_frame_by_a = from_a;
+  e.b_frame_by_b = from_b;
   // Compare where each puts robot B: the frames' origins may be far away,
   // where a small angle error looks like a large offset.
   const Pose2 b_by_a = from_a * b_pose, b_by_b = from_b * b_pose;
@@ -82,6 +84,7 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
 
   std::string problem = placement_problem(e.a_locates_b, config, "A", "B");
   if (problem.empty()) problem = placement_problem(e.b_locates_a, config, "B", "A");
+  e.placements_verified = problem.empty();
   if (problem.empty() && (e.disagreement_xy > config.agree_xy || e.disagreement_theta > config.agree_theta))
     problem = fmt::format("the two directions disagree by {:.2f} m / {:.1f}°", e.disagreement_xy,
                           e.disagreement_theta * 180.0 / std::numbers::pi);

@@ -63,6 +63,10 @@ struct EncounterEstimate {
   RelativePoseResult b_locates_a;  // A's robot placed in B's map
   double disagreement_xy = 0.0;    // m, between the two directions' placements of B
   double disagreement_theta = 0.0; // rad
+  // Each placement passed its own checks (known, inliers, same side, runner-up);
+  // then only the directions' disagreement can have turned the encounter down.
+  bool placements_verified = false;
+  Pose2 b_frame_by_a, b_frame_by_b;  // each direction's estimate of B's frame in A's
   // How far the wide refinement moved the accepted estimate, at B's position;
   // beyond agree_xy / agree_theta the near estimate stands (or, with
   // reject_bent_maps, the encounter is rejected).

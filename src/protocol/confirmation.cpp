@@ -1,0 +1,25 @@
+#include "protocol/confirmation.hpp"
+
+#include <cmath>
+
+namespace dsswarm::protocol {
+
+bool agrees_at_b(const Pose2& t, const Pose2& other, const Pose2& b_pose, const ConfirmTolerance& tol) {
+  const Pose2 d = between(other * b_pose, t * b_pose);
+  return std::hypot(d.x, d.y) <= tol.xy && std::abs(normalize_angle(d.theta)) <= tol.theta;
+}
+
+std::optional<Pose2> pending_confirmed_by_directions(const EncounterEstimate& e, const Pose2& b_pose,
+                                                     std::span<const Pose2> a_pending,
+                                                     std::span<const Pose2> b_pending, const ConfirmTolerance& tol) {
+  if (e.accepted || !e.placements_verified) return std::nullopt;
+  auto both_agree = [&](const Pose2& t) {
+    return agrees_at_b(t, e.b_frame_by_a, b_pose, tol) && agrees_at_b(t, e.b_frame_by_b, b_pose, tol);
+  };
+  for (std::span<const Pose2> list : {a_pending, b_pending})
+    for (const Pose2& t : list)
+      if (both_agree(t)) return t;
+  return std::nullopt;
+}
+
+}  // namespace dsswarm::protocol
