@@ -84,24 +84,43 @@ void World::build_grid() {
     for_each_cell_of(segments_[k], [&](std::size_t c) { cell_segments_[fill[c]++] = static_cast<std::uint32_t>(k); });
 }
 
-double World::raycast(const Eigen::Vector2d& origin, double angle, double max_range) const {
-  if (segments_.empty() || !(max_range > 0.0)) return kInf;
-  const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
+bool World::clip_to_grid(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double& t_enter,
+                         double& t_leave) const {
   const Eigen::Vector2d grid_max = grid_min_ + cell_size_ * Eigen::Vector2d(grid_nx_, grid_ny_);
-
-  // Clip the ray to the grid rectangle (slab method).
-  double t_enter = 0.0, t_leave = max_range;
   for (int k = 0; k < 2; ++k) {
     if (dir[k] == 0.0) {
-      if (origin[k] < grid_min_[k] || origin[k] > grid_max[k]) return kInf;
+      if (origin[k] < grid_min_[k] || origin[k] > grid_max[k]) return false;
       continue;
     }
     double ta = (grid_min_[k] - origin[k]) / dir[k], tb = (grid_max[k] - origin[k]) / dir[k];
     if (ta > tb) std::swap(ta, tb);
     t_enter = std::max(t_enter, ta);
     t_leave = std::min(t_leave, tb);
-    if (t_enter > t_leave) return kInf;
+    if (t_enter > t_leave) return false;
   }
+  return true;
+}
+
+double World::nearest_in_cell(std::size_t cell, const Eigen::Vector2d& origin, const Eigen::Vector2d& dir,
+                              double best) const {
+  for (std::uint32_t i = cell_begin_[cell]; i < cell_begin_[cell + 1]; ++i) {
+    const Segment& s = segments_[cell_segments_[i]];
+    const Eigen::Vector2d e = s.b - s.a;
+    const double denom = cross(dir, e);
+    if (std::abs(denom) < 1e-12) continue;  // parallel: a beam grazing a wall end-on sees its neighbours
+    const Eigen::Vector2d ao = s.a - origin;
+    const double t = cross(ao, e) / denom;
+    const double u = cross(ao, dir) / denom;
+    if (t >= 0.0 && t < best && u >= 0.0 && u <= 1.0) best = t;
+  }
+  return best;
+}
+
+double World::raycast(const Eigen::Vector2d& origin, double angle, double max_range) const {
+  if (segments_.empty() || !(max_range > 0.0)) return kInf;
+  const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
+  double t_enter = 0.0, t_leave = max_range;
+  if (!clip_to_grid(origin, dir, t_enter, t_leave)) return kInf;
 
   // Walk the cells along the ray (Amanatides & Woo) and stop at the first cell
   // whose exit lies beyond the nearest hit found so far.
@@ -121,16 +140,7 @@ double World::raycast(const Eigen::Vector2d& origin, double angle, double max_ra
   double best = kInf;
   for (;;) {
     const std::size_t cell = static_cast<std::size_t>(cy) * static_cast<std::size_t>(grid_nx_) + static_cast<std::size_t>(cx);
-    for (std::uint32_t i = cell_begin_[cell]; i < cell_begin_[cell + 1]; ++i) {
-      const Segment& s = segments_[cell_segments_[i]];
-      const Eigen::Vector2d e = s.b - s.a;
-      const double denom = cross(dir, e);
-      if (std::abs(denom) < 1e-12) continue;  // parallel: a beam grazing a wall end-on sees its neighbours
-      const Eigen::Vector2d ao = s.a - origin;
-      const double t = cross(ao, e) / denom;
-      const double u = cross(ao, dir) / denom;
-      if (t >= 0.0 && t < best && u >= 0.0 && u <= 1.0) best = t;
-    }
+    best = nearest_in_cell(cell, origin, dir, best);
     const double t_exit = std::min(t_next_x, t_next_y);
     if (best <= t_exit || t_exit > t_leave) break;
     if (t_next_x < t_next_y) {

@@ -99,6 +99,13 @@ class World {
 
  private:
   void build_grid();
+  // The part [t_enter, t_leave] of the ray that lies inside the grid's
+  // rectangle (slab method); false when it misses the rectangle.
+  bool clip_to_grid(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, double& t_enter,
+                    double& t_leave) const;
+  // The nearest hit along the ray among one grid cell's segments, if nearer than `best`.
+  double nearest_in_cell(std::size_t cell, const Eigen::Vector2d& origin, const Eigen::Vector2d& dir,
+                         double best) const;
 
   std::vector<Segment> segments_;
   std::vector<Box> solids_;
