@@ -22,4 +22,11 @@ std::optional<Pose2> pending_confirmed_by_directions(const EncounterEstimate& e,
   return std::nullopt;
 }
 
+std::optional<Pose2> near_agreeing_estimate(const EncounterEstimate& e, const Pose2& b_pose,
+                                            const ConfirmTolerance& tol) {
+  if (e.accepted || !e.placements_verified || !agrees_at_b(e.b_frame_by_a, e.b_frame_by_b, b_pose, tol))
+    return std::nullopt;
+  return interpolate(e.b_frame_by_a * b_pose, e.b_frame_by_b * b_pose, 0.5) * b_pose.inverse();
+}
+
 }  // namespace dsswarm::protocol

@@ -29,4 +29,11 @@ std::optional<Pose2> pending_confirmed_by_directions(const EncounterEstimate& e,
                                                      std::span<const Pose2> a_pending,
                                                      std::span<const Pose2> b_pending, const ConfirmTolerance& tol);
 
+// The same kind of encounter, when its two directions lie within `tol` of
+// each other: the mean of the two, held pending like a verified transform
+// (a later encounter that agrees confirms it, whichever came first).
+// Otherwise nothing.
+std::optional<Pose2> near_agreeing_estimate(const EncounterEstimate& e, const Pose2& b_pose,
+                                            const ConfirmTolerance& tol);
+
 }  // namespace dsswarm::protocol

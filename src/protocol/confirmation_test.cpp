@@ -72,5 +72,24 @@ TEST(Confirmation, TheFirstAgreeingTransformOfASListWinsOnBothSides) {
   EXPECT_NEAR(t->y, near_a.y, 1e-12);
 }
 
+TEST(Confirmation, DirectionsWithinTheToleranceAreHeldAsTheirMean) {
+  const std::optional<Pose2> held =
+      near_agreeing_estimate(disagreeing(Pose2(0.06, 0.0, 0.01), Pose2(-0.04, 0.0, -0.006)), kRobotB, kConfirmTol);
+  ASSERT_TRUE(held);
+  const Pose2 d = between(kTrueFrame * kRobotB, *held * kRobotB);  // at B: halfway between the two
+  EXPECT_NEAR(d.x, 0.01, 1e-3);
+  EXPECT_NEAR(d.y, 0.0, 1e-3);
+  EXPECT_NEAR(d.theta, 0.002, 1e-9);
+  // Too far apart (0.3 m), one placement unverified, or accepted anyway: nothing held.
+  EXPECT_FALSE(near_agreeing_estimate(disagreeing(Pose2(0.15, 0.0, 0.0), Pose2(-0.15, 0.0, 0.0)), kRobotB,
+                                      kConfirmTol));
+  EncounterEstimate poor = disagreeing(Pose2(0.05, 0.0, 0.0), Pose2(-0.05, 0.0, 0.0));
+  poor.placements_verified = false;
+  EXPECT_FALSE(near_agreeing_estimate(poor, kRobotB, kConfirmTol));
+  EncounterEstimate accepted = disagreeing(Pose2(), Pose2());
+  accepted.accepted = true;
+  EXPECT_FALSE(near_agreeing_estimate(accepted, kRobotB, kConfirmTol));
+}
+
 }  // namespace
 }  // namespace dsswarm::protocol

@@ -230,10 +230,11 @@ void EncounterEngine::decide(Exchange& x, double now) {
   o.estimate = decide_encounter(a_pose, b_pose, x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine,
                                 config_.encounter);
   o.decided = x.decided = true;
-  if (config_.confirm && config_.confirm_by_directions) confirm_by_directions(x);
+  // Held pending, it is as good as verified: never repeated, or a repeat could confirm it.
+  const bool held = config_.confirm && config_.confirm_by_directions && confirm_by_directions(x);
   const Offered offered{x.mine.view.pose, x.my_inventory}, received{x.offer->pose, x.offer->inventory};
   repeats_.decided(x.peer, x.id, x.self_is_a ? offered : received, x.self_is_a ? received : offered,
-                   o.estimate.accepted);
+                   o.estimate.accepted || held);
   x.accepted = o.estimate.accepted;
   o.reason = o.estimate.reason;
   if (x.accepted && config_.confirm && o.confirmed_by.empty()) confirm(x);
@@ -246,8 +247,9 @@ void EncounterEngine::decide(Exchange& x, double now) {
 }
 
 // The pending lists travel in the placements, so both robots see the same
-// ones here; A's list is taken first on both sides.
-void EncounterEngine::confirm_by_directions(Exchange& x) {
+// ones here; A's list is taken first on both sides. True when the encounter
+// is held pending.
+bool EncounterEngine::confirm_by_directions(Exchange& x) {
   EncounterOutcome& o = x.outcome;
   const Placement& theirs = *x.their_placement;
   const std::vector<Pose2>& a_pending = x.self_is_a ? x.my_pending : theirs.pending;
@@ -255,11 +257,18 @@ void EncounterEngine::confirm_by_directions(Exchange& x) {
   const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
   const std::optional<Pose2> t =
       pending_confirmed_by_directions(o.estimate, b_pose, a_pending, b_pending, confirm_tolerance());
-  if (!t) return;
+  if (!t) {
+    const std::optional<Pose2> held = near_agreeing_estimate(o.estimate, b_pose, confirm_tolerance());
+    if (!held) return false;
+    hold_pending(x.peer, *held);
+    o.estimate.reason += "; held until a second encounter agrees";
+    return true;
+  }
   o.estimate.accepted = true;
   o.estimate.reason.clear();
   o.estimate.b_frame_in_a = o.estimate.b_frame_in_a_near = *t;
   o.confirmed_by = "earlier encounter, by each direction of this one";
+  return false;
 }
 
 void EncounterEngine::confirm(Exchange& x) {
@@ -276,11 +285,15 @@ void EncounterEngine::confirm(Exchange& x) {
     o.confirmed_by = by_known ? "known transform" : "earlier encounter";
     return;
   }
-  std::vector<Pose2>& pending = peers_[x.peer].pending;
-  pending.push_back(t);
-  if (pending.size() > config_.max_pending_confirmations) pending.erase(pending.begin());
+  hold_pending(x.peer, t);
   x.accepted = false;
   o.reason = "unconfirmed: the placements verify; the maps merge once a second encounter agrees";
+}
+
+void EncounterEngine::hold_pending(const std::string& peer, const Pose2& t) {
+  std::vector<Pose2>& pending = peers_[peer].pending;
+  pending.push_back(t);
+  if (pending.size() > config_.max_pending_confirmations) pending.erase(pending.begin());
 }
 
 }  // namespace dsswarm::protocol

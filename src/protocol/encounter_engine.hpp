@@ -133,7 +133,7 @@ class EncounterEngine {
   using Key = std::pair<std::string, std::uint64_t>;  // peer, encounter id
   struct PeerState {
     double last_merge = -1e300;
-    std::vector<Pose2> pending;  // verified, unconfirmed: B's frame in A's
+    std::vector<Pose2> pending;  // verified (or nearly: near_agreeing_estimate), unconfirmed: B's frame in A's
   };
   // An encounter waiting for an earlier one of this robot to end.
   struct Waiting {
@@ -155,7 +155,8 @@ class EncounterEngine {
   void on_decline(const std::string& peer, const Decline& decline, std::size_t bytes, double now);
   void decide(Exchange& x, double now);
   void confirm(Exchange& x);
-  void confirm_by_directions(Exchange& x);
+  bool confirm_by_directions(Exchange& x);
+  void hold_pending(const std::string& peer, const Pose2& t);
   ConfirmTolerance confirm_tolerance() const { return {config_.confirm_xy, config_.confirm_theta}; }
   void send_transfer(Exchange& x);
   void absorb_transfer(Exchange& x, double now);

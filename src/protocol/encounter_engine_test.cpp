@@ -215,6 +215,42 @@ TEST(EncounterEngine, ASecondEncounterWhoseDirectionsDisagreeButEachAgreesConfir
   }
 }
 
+// The other order: the encounter whose directions disagree comes first and
+// is held; a verified one that agrees with it is confirmed by it. Held, it
+// is not run again on the same scans (a repeat could confirm itself).
+TEST(EncounterEngine, AnEncounterWhoseDirectionsNearlyAgreeIsHeldAndConfirmsALaterOne) {
+  Pair p{SwarmConfig{}};
+  const Pose2 true_pose = p.b.view.pose;
+  p.b.view.pose = true_pose * Pose2(0.12, 0.0, 0.0);
+  p.ea.start("b", 1, 0.0);
+  p.eb.start("a", 1, 0.0);
+  p.pump(0.0);
+  const auto first = p.ea.take_outcomes();
+  p.eb.take_outcomes();
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].end, End::rejected);
+  EXPECT_NE(first[0].reason.find("; held until a second encounter agrees"), std::string::npos) << first[0].reason;
+  p.ea.start("b", 2, 1.0);  // the same scans and maps again
+  p.eb.start("a", 2, 1.0);
+  p.pump(1.0);
+  const auto repeat = p.ea.take_outcomes();
+  p.eb.take_outcomes();
+  ASSERT_EQ(repeat.size(), 1u);
+  EXPECT_EQ(repeat[0].end, End::declined);
+  EXPECT_EQ(p.a.merges, 0);
+  p.b.view.pose = true_pose;
+  p.b.version = 12;
+  p.ea.start("b", 3, 2.0);
+  p.eb.start("a", 3, 2.0);
+  p.pump(2.0);
+  const auto third = p.ea.take_outcomes();
+  ASSERT_EQ(third.size(), 1u);
+  ASSERT_EQ(third[0].end, End::accepted) << third[0].reason;
+  EXPECT_EQ(third[0].confirmed_by, "earlier encounter");
+  EXPECT_EQ(p.a.merges, 1);
+  EXPECT_EQ(p.b.merges, 1);
+}
+
 TEST(EncounterEngine, WithinTheRemergeIntervalBothDecline) {
   Pair p(unconfirmed());
   p.ea.start("b", 1, 0.0);

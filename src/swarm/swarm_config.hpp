@@ -45,10 +45,11 @@ struct SwarmConfig {
   bool confirm = true;
   double confirm_xy = 0.25;      // m
   double confirm_theta = 0.035;  // rad (2°)
-  // A later encounter whose two placements each verify but disagree with
-  // each other (beyond encounter.agree_xy / agree_theta) confirms a pending
-  // transform that each of them agrees with (protocol/confirmation.hpp): two
-  // more independent estimates. Robots that meet while their maps are still
+  // An encounter whose two placements each verify but disagree with each
+  // other (beyond encounter.agree_xy / agree_theta, within confirm_xy /
+  // confirm_theta) still counts as a second estimate: it confirms a pending
+  // transform that each direction agrees with, or is held pending itself
+  // (protocol/confirmation.hpp). Robots that meet while their maps are still
   // bent (loops not yet closed) seldom agree to 8 cm twice.
   bool confirm_by_directions = true;
   // An encounter is declined as a repeat when both robots stand within this
