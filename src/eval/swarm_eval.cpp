@@ -92,12 +92,18 @@ EncounterSummary summarize(const std::vector<EncounterScore>& encounters) {
 
 namespace {
 
-// The agent's own pose at the relation timestamp nearest to t (within the
-// bridge) that the agent covers.
+// The agent's pose at the relation timestamp nearest to t (within the
+// bridge) that it covers, as its map stood at the encounter: `then`, its pose
+// at t then, moved by its final trajectory's motion from t to that timestamp.
+// Its final pose there would carry every later loop closure's correction,
+// against a transform found before them. When t itself is not in the
+// trajectory, its final pose there.
 std::optional<StampedPose> bridge_pose(const RelationGraph& graph, const Trajectory& own, const TimestampIndex& index,
-                                       double t, const SwarmEvalOptions& o) {
+                                       double t, const Pose2& then, const SwarmEvalOptions& o) {
+  const std::optional<std::size_t> at_t = index.nearest(t, o.max_time_diff);
   for (const double candidate : graph.endpoints_near(t, o.bridge)) {
-    if (const auto i = index.nearest(candidate, o.max_time_diff)) return StampedPose{candidate, own[*i].pose};
+    if (const auto i = index.nearest(candidate, o.max_time_diff))
+      return StampedPose{candidate, at_t ? then * between(own[*at_t].pose, own[*i].pose) : own[*i].pose};
   }
   return std::nullopt;
 }
@@ -178,8 +184,8 @@ EncounterScore score_encounter(const SwarmOutput& output, std::size_t k, const R
   s.truth = graph.motion(s.a_time, s.b_time, options.max_hops);
   if (!s.truth && options.bridge > 0.0) {
     const std::size_t ia = agent_named(output, s.entry.a), ib = agent_named(output, s.entry.b);
-    const auto pa = bridge_pose(graph, output.agents[ia].own, own[ia], s.entry.a_log_time, options);
-    const auto pb = bridge_pose(graph, output.agents[ib].own, own[ib], s.entry.b_log_time, options);
+    const auto pa = bridge_pose(graph, output.agents[ia].own, own[ia], s.entry.a_log_time, s.entry.a_pose, options);
+    const auto pb = bridge_pose(graph, output.agents[ib].own, own[ib], s.entry.b_log_time, s.entry.b_pose, options);
     const auto truth = pa && pb ? graph.motion(pa->timestamp, pb->timestamp, options.max_hops) : std::nullopt;
     if (truth) {
       s.truth = truth;

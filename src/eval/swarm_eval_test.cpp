@@ -288,5 +288,24 @@ TEST(SwarmEval, BrokenFilesAreInputErrors) {
   EXPECT_NE(message_of(test::fresh_dir("swarm_eval/empty")).find("no agents/ folder"), std::string::npos);
 }
 
+// Loop closing after the encounter moved b's trajectory there by 1 m; the
+// transform was found against b's map as it stood. Bridged to a relation's
+// timestamp, the encounter is checked against b's pose as it stood (moved
+// only by b's own motion in between), as an encounter at a relation's
+// timestamp is.
+TEST(SwarmEval, ABridgedEncounterIsCheckedAgainstThePosesAsTheyStood) {
+  SwarmOutput out = make_output();
+  Trajectory& b = out.agents[1].own;
+  b.push_back({106.5, own_b(106.5)});  // b's scan at the encounter, between two relations' timestamps
+  for (StampedPose& p : b) p.pose = Pose2(0.0, 1.0, 0.0) * p.pose;  // moved by a later closure
+  out.encounters = {encounter("a", "b", 104, 106.5, kFrameBEstimate)};  // b's pose as it stood
+  const SwarmEvaluation ev = evaluate_swarm(out, make_relations());
+  ASSERT_TRUE(ev.encounters[0].scored());
+  EXPECT_TRUE(ev.encounters[0].bridged());
+  EXPECT_EQ(ev.encounters[0].b_time, 106.0);
+  // a at 4.04 (drift), b at 6 with the frame's 10 cm: 2.06 for 2 (1.02 m off from b's final pose).
+  EXPECT_NEAR(ev.encounters[0].trans_error, 0.06, 1e-9);
+}
+
 }  // namespace
 }  // namespace dsswarm
