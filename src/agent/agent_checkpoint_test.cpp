@@ -16,6 +16,21 @@ namespace {
 namespace fs = std::filesystem;
 using namespace runtime_test;
 
+// Runs robot "a" alone over the first `n` scans of `s` (all when n is 0),
+// paced 5x, into `out` until its feed ends; its report.
+AgentReport run_a(protocol::MemoryBus& bus, const fs::path& out, const AgentStream& s, std::size_t n, bool resume) {
+  const auto end = static_cast<long>(n == 0 ? s.scans.size() : n);
+  PacedFeed feed({s.scans.begin(), s.scans.begin() + end}, {s.clock.begin(), s.clock.begin() + end}, paced(5.0, 64));
+  auto link = bus.join("a");
+  AgentOptions o = options_for("a", out);
+  o.linger = 0.0;
+  o.resume = resume;
+  AgentRuntime runtime(o, feed, *link);
+  std::atomic<bool> stop{false};
+  runtime.run(stop);
+  return runtime.report();
+}
+
 TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   const fs::path out = fresh_dir("resume");
   auto bus = std::make_shared<protocol::MemoryBus>();
@@ -25,13 +40,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   for (std::size_t i = 0; i < second.scans.size(); ++i) second.clock.push_back(0.1 * static_cast<double>(i));
   std::size_t version_before = 0;
   {
-    PacedFeed feed(first.scans, first.clock, paced(5.0, 64));
-    auto link = bus->join("a");
-    AgentOptions o = options_for("a", out);
-    o.linger = 0.0;
-    AgentRuntime runtime(o, feed, *link);
-    std::atomic<bool> stop{false};
-    runtime.run(stop);
+    run_a(*bus, out, first, 0, false);
     const Checkpoint k = read_checkpoint(out, "a");
     version_before = k.snapshot.layers.at(0).version;
     // The odometry reading at the saved pose, for the resumed robot's first prediction.
@@ -43,14 +52,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
     EXPECT_DOUBLE_EQ(k.odometry->theta, at_stamp->odometry->theta);
   }
   ASSERT_GT(version_before, 0u);
-  PacedFeed feed(second.scans, second.clock, paced(5.0, 64));
-  auto link = bus->join("a");
-  AgentOptions o = options_for("a", out);
-  o.linger = 0.0;
-  o.resume = true;
-  AgentRuntime runtime(o, feed, *link);
-  std::atomic<bool> stop{false};
-  runtime.run(stop);
+  const AgentReport resumed = run_a(*bus, out, second, 0, true);
   const Trajectory t = read_tum(out / "trajectory.tum");
   ASSERT_EQ(t.size(), 30u);  // the first run's poses, then the second's
   EXPECT_DOUBLE_EQ(t[15].timestamp, s.scans[15].timestamp);
@@ -59,7 +61,7 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   EXPECT_NEAR(t.back().pose.x, truth.x, 0.05);
   EXPECT_NEAR(t.back().pose.y, truth.y, 0.05);
   EXPECT_GT(read_checkpoint(out, "a").snapshot.layers.at(0).version, version_before);
-  EXPECT_EQ(runtime.report().status.scans_processed, 30u);
+  EXPECT_EQ(resumed.status.scans_processed, 30u);
 }
 
 // A log or simulated run restarted from its start after a crash (`agent
@@ -69,27 +71,11 @@ TEST(AgentRuntime, ResumedOnTheWholeRunAgainMapsOnlyWhatTheCheckpointLacks) {
   const fs::path out = fresh_dir("resume_whole");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  {
-    PacedFeed feed({s.scans.begin(), s.scans.begin() + 15}, {s.clock.begin(), s.clock.begin() + 15}, paced(5.0, 64));
-    auto link = bus->join("a");
-    AgentOptions o = options_for("a", out);
-    o.linger = 0.0;
-    AgentRuntime runtime(o, feed, *link);
-    std::atomic<bool> stop{false};
-    runtime.run(stop);
-  }
-  PacedFeed feed(s.scans, s.clock, paced(5.0, 64));
-  auto link = bus->join("a");
-  AgentOptions o = options_for("a", out);
-  o.linger = 0.0;
-  o.resume = true;
-  AgentRuntime runtime(o, feed, *link);
-  std::atomic<bool> stop{false};
-  runtime.run(stop);
+  run_a(*bus, out, s, 15, false);
+  const AgentReport r = run_a(*bus, out, s, 0, true);
   const Trajectory t = read_tum(out / "trajectory.tum");
   ASSERT_EQ(t.size(), 30u);
   for (std::size_t i = 0; i < t.size(); ++i) EXPECT_DOUBLE_EQ(t[i].timestamp, s.scans[i].timestamp) << i;
-  const AgentReport r = runtime.report();
   EXPECT_EQ(r.scans_in_checkpoint, 15u);
   EXPECT_EQ(r.status.scans_processed, 30u);
 }
@@ -100,18 +86,8 @@ TEST(AgentRuntime, AFreshStartKeepsTheEarlierCheckpointAside) {
   const fs::path out = fresh_dir("fresh_again");
   auto bus = std::make_shared<protocol::MemoryBus>();
   const AgentStream s = two_robots()[0];
-  auto run_once = [&](std::size_t scans) {
-    PacedFeed feed({s.scans.begin(), s.scans.begin() + static_cast<long>(scans)},
-                   {s.clock.begin(), s.clock.begin() + static_cast<long>(scans)}, paced(5.0, 64));
-    auto link = bus->join("a");
-    AgentOptions o = options_for("a", out);
-    o.linger = 0.0;
-    AgentRuntime runtime(o, feed, *link);
-    std::atomic<bool> stop{false};
-    runtime.run(stop);
-  };
-  run_once(20);
-  run_once(5);
+  run_a(*bus, out, s, 20, false);
+  run_a(*bus, out, s, 5, false);
   EXPECT_EQ(read_checkpoint(out, "a").trajectory.size(), 5u);
   const Checkpoint earlier = read_checkpoint(out / "previous", "a");
   EXPECT_EQ(earlier.scans_processed, 20u);

@@ -35,6 +35,14 @@ struct Pair {
         }
     }
   }
+  // Both robots told they are near (encounter `id` at `now`), everything
+  // delivered; what each decided, A's first.
+  std::pair<std::vector<EncounterOutcome>, std::vector<EncounterOutcome>> meet(std::uint64_t id, double now) {
+    ea.start("b", id, now);
+    eb.start("a", id, now);
+    pump(now);
+    return {ea.take_outcomes(), eb.take_outcomes()};
+  }
   FakeRobot a, b;
   EncounterEngine ea, eb;
   MessageGate ga, gb;
@@ -181,19 +189,12 @@ TEST(EncounterEngine, ASecondEncounterWhoseDirectionsDisagreeButEachAgreesConfir
     SwarmConfig config;
     config.confirm_by_directions = by_directions;
     Pair p(config);
-    p.ea.start("b", 1, 0.0);
-    p.eb.start("a", 1, 0.0);
-    p.pump(0.0);
-    const auto first = p.ea.take_outcomes();
-    p.eb.take_outcomes();
+    const auto first = p.meet(1, 0.0).first;
     ASSERT_EQ(first.size(), 1u);
     ASSERT_NE(first[0].reason.find("unconfirmed: "), std::string::npos) << first[0].reason;
     p.b.view.pose = p.b.view.pose * Pose2(0.12, 0.0, 0.0);
     p.b.version = 12;
-    p.ea.start("b", 2, 1.0);
-    p.eb.start("a", 2, 1.0);
-    p.pump(1.0);
-    const auto second_a = p.ea.take_outcomes(), second_b = p.eb.take_outcomes();
+    const auto [second_a, second_b] = p.meet(2, 1.0);
     ASSERT_EQ(second_a.size(), 1u);
     ASSERT_EQ(second_b.size(), 1u);
     EXPECT_GT(second_a[0].estimate.disagreement_xy, config.encounter.agree_xy);
@@ -222,28 +223,17 @@ TEST(EncounterEngine, AnEncounterWhoseDirectionsNearlyAgreeIsHeldAndConfirmsALat
   Pair p{SwarmConfig{}};
   const Pose2 true_pose = p.b.view.pose;
   p.b.view.pose = true_pose * Pose2(0.12, 0.0, 0.0);
-  p.ea.start("b", 1, 0.0);
-  p.eb.start("a", 1, 0.0);
-  p.pump(0.0);
-  const auto first = p.ea.take_outcomes();
-  p.eb.take_outcomes();
+  const auto first = p.meet(1, 0.0).first;
   ASSERT_EQ(first.size(), 1u);
   EXPECT_EQ(first[0].end, End::rejected);
   EXPECT_NE(first[0].reason.find("; held until a second encounter agrees"), std::string::npos) << first[0].reason;
-  p.ea.start("b", 2, 1.0);  // the same scans and maps again
-  p.eb.start("a", 2, 1.0);
-  p.pump(1.0);
-  const auto repeat = p.ea.take_outcomes();
-  p.eb.take_outcomes();
+  const auto repeat = p.meet(2, 1.0).first;  // the same scans and maps again
   ASSERT_EQ(repeat.size(), 1u);
   EXPECT_EQ(repeat[0].end, End::declined);
   EXPECT_EQ(p.a.merges, 0);
   p.b.view.pose = true_pose;
   p.b.version = 12;
-  p.ea.start("b", 3, 2.0);
-  p.eb.start("a", 3, 2.0);
-  p.pump(2.0);
-  const auto third = p.ea.take_outcomes();
+  const auto third = p.meet(3, 2.0).first;
   ASSERT_EQ(third.size(), 1u);
   ASSERT_EQ(third[0].end, End::accepted) << third[0].reason;
   EXPECT_EQ(third[0].confirmed_by, "earlier encounter");
