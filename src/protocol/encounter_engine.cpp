@@ -248,7 +248,9 @@ void EncounterEngine::decide(Exchange& x, double now) {
 
 // The pending lists travel in the placements, so both robots see the same
 // ones here; A's list is taken first on both sides. True when the encounter
-// is held pending.
+// is held pending: only with loop closure on, where a merge becomes a
+// constraint that later closures and followers refine. Without it a merge
+// is final, so only verified transforms are held (and merged on).
 bool EncounterEngine::confirm_by_directions(Exchange& x) {
   EncounterOutcome& o = x.outcome;
   const Placement& theirs = *x.their_placement;
@@ -258,6 +260,7 @@ bool EncounterEngine::confirm_by_directions(Exchange& x) {
   const std::optional<Pose2> t =
       pending_confirmed_by_directions(o.estimate, b_pose, a_pending, b_pending, confirm_tolerance());
   if (!t) {
+    if (!config_.slam.loop_closure.enabled) return false;
     const std::optional<Pose2> held = near_agreeing_estimate(o.estimate, b_pose, confirm_tolerance());
     if (!held) return false;
     hold_pending(x.peer, *held);

@@ -216,29 +216,42 @@ TEST(EncounterEngine, ASecondEncounterWhoseDirectionsDisagreeButEachAgreesConfir
   }
 }
 
-// The other order: the encounter whose directions disagree comes first and
-// is held; a verified one that agrees with it is confirmed by it. Held, it
-// is not run again on the same scans (a repeat could confirm itself).
-TEST(EncounterEngine, AnEncounterWhoseDirectionsNearlyAgreeIsHeldAndConfirmsALaterOne) {
-  Pair p{SwarmConfig{}};
-  const Pose2 true_pose = p.b.view.pose;
-  p.b.view.pose = true_pose * Pose2(0.12, 0.0, 0.0);
-  const auto first = p.meet(1, 0.0).first;
-  ASSERT_EQ(first.size(), 1u);
-  EXPECT_EQ(first[0].end, End::rejected);
-  EXPECT_NE(first[0].reason.find("; held until a second encounter agrees"), std::string::npos) << first[0].reason;
-  const auto repeat = p.meet(2, 1.0).first;  // the same scans and maps again
-  ASSERT_EQ(repeat.size(), 1u);
-  EXPECT_EQ(repeat[0].end, End::declined);
-  EXPECT_EQ(p.a.merges, 0);
-  p.b.view.pose = true_pose;
-  p.b.version = 12;
-  const auto third = p.meet(3, 2.0).first;
-  ASSERT_EQ(third.size(), 1u);
-  ASSERT_EQ(third[0].end, End::accepted) << third[0].reason;
-  EXPECT_EQ(third[0].confirmed_by, "earlier encounter");
-  EXPECT_EQ(p.a.merges, 1);
-  EXPECT_EQ(p.b.merges, 1);
+// The other order, with loop closure on: the encounter whose directions
+// disagree comes first and is held; a verified one that agrees with it is
+// confirmed by it. Held, it is not run again on the same scans (a repeat
+// could confirm itself). Without loop closure a merge is final and only
+// verified transforms are held.
+TEST(EncounterEngine, WithLoopClosureAnEncounterWhoseDirectionsNearlyAgreeIsHeldAndConfirmsALaterOne) {
+  for (const bool loop_closure : {true, false}) {
+    SCOPED_TRACE(loop_closure ? "loop closure on" : "off");
+    SwarmConfig config;
+    config.slam.loop_closure.enabled = loop_closure;
+    Pair p(config);
+    const Pose2 true_pose = p.b.view.pose;
+    p.b.view.pose = true_pose * Pose2(0.12, 0.0, 0.0);
+    const auto first = p.meet(1, 0.0).first;
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_EQ(first[0].end, End::rejected);
+    EXPECT_EQ(first[0].reason.find("; held until a second encounter agrees") != std::string::npos, loop_closure)
+        << first[0].reason;
+    const auto repeat = p.meet(2, 1.0).first;  // the same scans and maps again
+    ASSERT_EQ(repeat.size(), 1u);
+    EXPECT_EQ(repeat[0].end == End::declined, loop_closure);  // turned down, not held: runs again once
+    EXPECT_EQ(p.a.merges, 0);
+    p.b.view.pose = true_pose;
+    p.b.version = 12;
+    const auto third = p.meet(3, 2.0).first;
+    ASSERT_EQ(third.size(), 1u);
+    if (!loop_closure) {
+      EXPECT_NE(third[0].reason.find("unconfirmed: "), std::string::npos) << third[0].reason;
+      EXPECT_EQ(p.a.merges, 0);
+      continue;
+    }
+    ASSERT_EQ(third[0].end, End::accepted) << third[0].reason;
+    EXPECT_EQ(third[0].confirmed_by, "earlier encounter");
+    EXPECT_EQ(p.a.merges, 1);
+    EXPECT_EQ(p.b.merges, 1);
+  }
 }
 
 TEST(EncounterEngine, WithinTheRemergeIntervalBothDecline) {

@@ -48,9 +48,9 @@ struct SwarmConfig {
   // An encounter whose two placements each verify but disagree with each
   // other (beyond encounter.agree_xy / agree_theta, within confirm_xy /
   // confirm_theta) still counts as a second estimate: it confirms a pending
-  // transform that each direction agrees with, or is held pending itself
-  // (protocol/confirmation.hpp). Robots that meet while their maps are still
-  // bent (loops not yet closed) seldom agree to 8 cm twice.
+  // transform that each direction agrees with, or, with loop closure on, is
+  // held pending itself (protocol/confirmation.hpp). Robots that meet while
+  // their maps are still bent (loops not yet closed) seldom agree to 8 cm twice.
   bool confirm_by_directions = true;
   // An encounter is declined as a repeat when both robots stand within this
   // of where they stood at the pair's last decided encounter, on the same
