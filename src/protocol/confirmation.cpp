@@ -24,7 +24,8 @@ std::optional<Pose2> pending_confirmed_by_directions(const EncounterEstimate& e,
 
 std::optional<Pose2> near_agreeing_estimate(const EncounterEstimate& e, const Pose2& b_pose,
                                             const ConfirmTolerance& tol) {
-  if (e.accepted || !e.placements_verified || !agrees_at_b(e.b_frame_by_a, e.b_frame_by_b, b_pose, tol))
+  // disagreement_*: the two directions' placements of B, apart.
+  if (e.accepted || !e.placements_verified || e.disagreement_xy > tol.xy || e.disagreement_theta > tol.theta)
     return std::nullopt;
   return interpolate(e.b_frame_by_a * b_pose, e.b_frame_by_b * b_pose, 0.5) * b_pose.inverse();
 }

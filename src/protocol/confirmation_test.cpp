@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace dsswarm::protocol {
@@ -18,6 +19,9 @@ EncounterEstimate disagreeing(const Pose2& da, const Pose2& db) {
   e.placements_verified = true;
   e.b_frame_by_a = kTrueFrame * kRobotB * da * kRobotB.inverse();
   e.b_frame_by_b = kTrueFrame * kRobotB * db * kRobotB.inverse();
+  const Pose2 apart = between(e.b_frame_by_b * kRobotB, e.b_frame_by_a * kRobotB);  // as decide_encounter has it
+  e.disagreement_xy = std::hypot(apart.x, apart.y);
+  e.disagreement_theta = std::abs(normalize_angle(apart.theta));
   e.reason = "the two directions disagree";
   return e;
 }

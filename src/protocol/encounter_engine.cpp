@@ -222,12 +222,10 @@ void EncounterEngine::on_placement(const std::string& peer, const Placement& pla
 }
 
 void EncounterEngine::decide(Exchange& x, double now) {
-  const Pose2& a_pose = x.self_is_a ? x.mine.view.pose : x.offer->pose;
-  const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
   const PeerPlacement& mine = *x.my_placement;
   const PeerPlacement& theirs = x.their_placement->placement;
   EncounterOutcome& o = x.outcome;
-  o.estimate = decide_encounter(a_pose, b_pose, x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine,
+  o.estimate = decide_encounter(x.a_pose(), x.b_pose(), x.self_is_a ? mine : theirs, x.self_is_a ? theirs : mine,
                                 config_.encounter);
   o.decided = x.decided = true;
   // Held pending, it is as good as verified: never repeated, or a repeat could confirm it.
@@ -256,12 +254,11 @@ bool EncounterEngine::confirm_by_directions(Exchange& x) {
   const Placement& theirs = *x.their_placement;
   const std::vector<Pose2>& a_pending = x.self_is_a ? x.my_pending : theirs.pending;
   const std::vector<Pose2>& b_pending = x.self_is_a ? theirs.pending : x.my_pending;
-  const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
   const std::optional<Pose2> t =
-      pending_confirmed_by_directions(o.estimate, b_pose, a_pending, b_pending, confirm_tolerance());
+      pending_confirmed_by_directions(o.estimate, x.b_pose(), a_pending, b_pending, confirm_tolerance());
   if (!t) {
     if (!config_.slam.loop_closure.enabled) return false;
-    const std::optional<Pose2> held = near_agreeing_estimate(o.estimate, b_pose, confirm_tolerance());
+    const std::optional<Pose2> held = near_agreeing_estimate(o.estimate, x.b_pose(), confirm_tolerance());
     if (!held) return false;
     hold_pending(x.peer, *held);
     o.estimate.reason += "; held until a second encounter agrees";
@@ -277,8 +274,7 @@ bool EncounterEngine::confirm_by_directions(Exchange& x) {
 void EncounterEngine::confirm(Exchange& x) {
   EncounterOutcome& o = x.outcome;
   const Pose2 t = o.estimate.b_frame_in_a;
-  const Pose2& b_pose = x.self_is_a ? x.offer->pose : x.mine.view.pose;
-  auto agrees = [&](const Pose2& other) { return agrees_at_b(t, other, b_pose, confirm_tolerance()); };
+  auto agrees = [&](const Pose2& other) { return agrees_at_b(t, other, x.b_pose(), confirm_tolerance()); };
   // What either robot holds, so both come to the same answer.
   const Placement& theirs = *x.their_placement;
   const bool by_known = (x.my_known && agrees(*x.my_known)) || (theirs.known_transform && agrees(*theirs.known_transform));

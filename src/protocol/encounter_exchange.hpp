@@ -33,6 +33,10 @@ struct EncounterEngine::Exchange {
   double progress = 0.0;  // the caller's clock when it opened, then when the peer's offer came (time-outs count from here)
   TransferAssembler incoming;
   EncounterOutcome outcome;
+
+  // Each robot's pose at the scan it offered (requires the peer's offer).
+  const Pose2& a_pose() const { return self_is_a ? mine.view.pose : offer->pose; }
+  const Pose2& b_pose() const { return self_is_a ? offer->pose : mine.view.pose; }
 };
 
 }  // namespace dsswarm::protocol

@@ -72,13 +72,11 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
     return e;
   }
   // Both directions as estimates of B's frame in A's frame.
-  const Pose2 from_a = e.a_locates_b.best.pose * b_pose.inverse();
-  const Pose2 from_b = (e.b_locates_a.best.pose * a_pose.inverse()).inverse();
-  e.b_frame_by_a = from_a;
-  e.b_frame_by_b = from_b;
+  e.b_frame_by_a = e.a_locates_b.best.pose * b_pose.inverse();
+  e.b_frame_by_b = (e.b_locates_a.best.pose * a_pose.inverse()).inverse();
   // Compare where each puts robot B: the frames' origins may be far away,
   // where a small angle error looks like a large offset.
-  const Pose2 b_by_a = from_a * b_pose, b_by_b = from_b * b_pose;
+  const Pose2 b_by_a = e.b_frame_by_a * b_pose, b_by_b = e.b_frame_by_b * b_pose;
   e.disagreement_xy = std::hypot(b_by_a.x - b_by_b.x, b_by_a.y - b_by_b.y);
   e.disagreement_theta = std::abs(normalize_angle(b_by_a.theta - b_by_b.theta));
 
