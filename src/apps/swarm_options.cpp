@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdlib>
+#include <optional>
 
 #include "common/errors.hpp"
 #include "net/security/discovery_probe.hpp"
@@ -28,9 +30,11 @@ int ros_domain_of(const std::optional<int>& given) {
   return 0;
 }
 
-net::ParticipantConfig participant(int domain, const std::string& interface, std::string security = {}) {
+net::ParticipantConfig participant(int domain, const std::string& interface, std::string security = {},
+                                   std::optional<double> lease = std::nullopt) {
   if (domain < 0 || domain > 232) throw ConfigError(fmt::format("DDS domain {} is outside 0..232", domain));
   net::ParticipantConfig c;
+  if (lease) c.lease = std::chrono::milliseconds(std::llround(*lease * 1000.0));
   c.domain_id = static_cast<std::uint32_t>(domain);
   c.interface = interface;
   c.security_xml = std::move(security);
@@ -50,6 +54,11 @@ void add_swarm_net_options(CLI::App& cmd, SwarmNetOptions& o) {
                "The ROS 2 topics too, on the secured swarm domain: viewers need a certificate of the swarm "
                "(dsswarm keys add DIR viewer) and ROS 2 security set up with it")
       ->needs(keys);
+  cmd.add_option("--lease", o.lease,
+                 "Seconds the swarm keeps a silent robot (DDS participant lease): a robot restarted after a crash "
+                 "is reachable once its old process's lease has run out")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
 }
 
 // The link the runtime holds: forwards to the current DDS link, which
@@ -111,7 +120,7 @@ SwarmNet::~SwarmNet() = default;
 void SwarmNet::open_swarm() {
   dds_link_.reset();
   swarm_.reset();
-  swarm_ = std::make_unique<net::Participant>(participant(swarm_domain_, options_.interface, security_xml_));
+  swarm_ = std::make_unique<net::Participant>(participant(swarm_domain_, options_.interface, security_xml_, options_.lease));
   dds_link_ = std::make_unique<net::DdsSwarmLink>(*swarm_, link_config_);
   if (!secured_) return;
   if (!watch_) watch_ = std::make_unique<Watch>();
@@ -138,7 +147,7 @@ net::Participant& SwarmNet::ros() {
   if (!ros_ && options_.secure_ros) {
     // A participant of its own with the robot's identity: the swarm's may be
     // recreated (maintain()) under the ROS writers.
-    ros_ = std::make_unique<net::Participant>(participant(swarm_domain_, options_.interface, security_xml_));
+    ros_ = std::make_unique<net::Participant>(participant(swarm_domain_, options_.interface, security_xml_, options_.lease));
   }
   if (!ros_) {
     const int domain = ros_domain_of(options_.ros_domain);

@@ -26,6 +26,11 @@ struct SwarmNetOptions {
   // The ROS 2 topics too: they move to the secured swarm domain, where only
   // holders of a certificate of the swarm's CA (dsswarm keys add) see them.
   bool secure_ros = false;
+  // Seconds peers keep a silent robot's swarm participant (DDS lease; Cyclone's
+  // default is 10). A robot killed without a goodbye stays matched that long,
+  // and messages to its restarted process wait behind what it never took.
+  // Our heartbeats (1 s) and discovery (every 0.8 lease) keep live robots in it.
+  double lease = 4.0;
 };
 
 void add_swarm_net_options(CLI::App& command, SwarmNetOptions& options);

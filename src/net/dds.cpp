@@ -112,6 +112,9 @@ std::string domain_config_xml(const ParticipantConfig& c) {
   if (c.max_processes < 1 || c.max_processes > 120) {
     throw ConfigError(fmt::format("DDS max_processes {} is out of range 1..120", c.max_processes));
   }
+  if (c.lease < std::chrono::milliseconds(100) || c.lease > std::chrono::hours(1)) {
+    throw ConfigError(fmt::format("DDS lease {} ms is out of range 100 ms..1 h", c.lease.count()));
+  }
   check_xml_text(c.interface, "network interface");
   std::vector<std::string> peers = c.peers;
   if (peers.empty() && is_loopback(c.interface)) peers.push_back("127.0.0.1");
@@ -136,10 +139,11 @@ std::string domain_config_xml(const ParticipantConfig& c) {
       "<CycloneDDS xmlns=\"https://cdds.io/config\"><Domain Id=\"any\">"
       "<General>{}</General>"
       "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
-      "<MaxAutoParticipantIndex>{}</MaxAutoParticipantIndex>{}</Discovery>"
+      "<MaxAutoParticipantIndex>{}</MaxAutoParticipantIndex>{}"
+      "<LeaseDuration>{} ms</LeaseDuration></Discovery>"
       "<Internal><MaxSampleSize>{}B</MaxSampleSize></Internal>"
       "{}</Domain></CycloneDDS>",
-      general, c.max_processes - 1, peer_list, c.max_sample_bytes, c.security_xml);
+      general, c.max_processes - 1, peer_list, c.lease.count(), c.max_sample_bytes, c.security_xml);
 }
 
 Participant::Participant(const ParticipantConfig& config) : config_(config) {

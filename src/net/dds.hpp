@@ -69,6 +69,11 @@ struct ParticipantConfig {
   std::uint32_t max_sample_bytes = 32u << 20;
   // A complete <Security>...</Security> element (DDS Security plugins), or empty.
   std::string security_xml;
+  // How long peers keep this participant after its last sign of life
+  // (Discovery/LeaseDuration; Cyclone's default 10 s). A process killed
+  // without a goodbye stays matched that long, and reliable writers to it
+  // stall: messages to its restarted successor wait behind them.
+  std::chrono::milliseconds lease{10000};
 };
 
 // The Cyclone configuration of a domain as dds_create_domain takes it.

@@ -55,6 +55,7 @@ TEST(DomainConfig, LoopbackUsesUnicastDiscoveryOn127001) {
   EXPECT_NE(xml.find("<Peer address=\"127.0.0.1\"/>"), std::string::npos) << xml;
   EXPECT_NE(xml.find("<ParticipantIndex>auto</ParticipantIndex>"), std::string::npos) << xml;
   EXPECT_NE(xml.find("<MaxAutoParticipantIndex>31</MaxAutoParticipantIndex>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<LeaseDuration>10000 ms</LeaseDuration>"), std::string::npos) << xml;
 }
 
 TEST(DomainConfig, AutoInterfaceKeepsMulticastAndTakesTheSecurityFragment) {
@@ -77,6 +78,9 @@ TEST(DomainConfig, RejectsWhatCannotBeConfigured) {
   EXPECT_THROW(domain_config_xml(config), ConfigError);
   config.interface = "auto";
   config.max_processes = 0;
+  EXPECT_THROW(domain_config_xml(config), ConfigError);
+  config.max_processes = 32;
+  config.lease = std::chrono::milliseconds(0);
   EXPECT_THROW(domain_config_xml(config), ConfigError);
 }
 
