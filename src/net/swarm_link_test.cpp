@@ -97,6 +97,7 @@ TEST(DdsSwarmLink, ARobotKilledWithoutAGoodbyeStallsItsWritersForItsLeaseOnly) {
   a_config.max_blocking = 100ms;
   a_config.match_wait = 10s;
   DdsSwarmLink a(p, a_config);
+  std::filesystem::create_directories(DSSWARM_TEST_TMP);
   ::setenv(kKilledInboxEnv, fmt::format("{} {} {}", pc.domain_id, pc.lease.count(), a_config.partition).c_str(), 1);
   sectest::PeerProcess old_b("/proc/self/exe",
                              {"--gtest_filter=DdsSwarmLink.DISABLED_InboxOfAProcessToBeKilled",
@@ -112,7 +113,7 @@ TEST(DdsSwarmLink, ARobotKilledWithoutAGoodbyeStallsItsWritersForItsLeaseOnly) {
   while (sent < 200 && a.send("b", chunk)) ++sent;
   ASSERT_LT(sent, 200) << "messages to the killed process never piled up";
   DdsSwarmLink new_b(p, robot("b"));  // the restarted robot
-  std::this_thread::sleep_until(killed + pc.lease + 1s);
+  std::this_thread::sleep_until(killed + pc.lease + 2s);  // Cyclone checks leases now and then
   for (int i = 0; i < 20; ++i) ASSERT_TRUE(a.send("b", chunk)) << "message " << i << " after the lease";
   const auto got = receive_for(new_b, 20, 5s);
   EXPECT_GE(got.size(), 20u);
