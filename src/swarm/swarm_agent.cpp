@@ -111,7 +111,10 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
   v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
                                         config.surroundings_points);
-  if (config.merge_surroundings_radius > 0.0)
+  // With loop closure the transform stays the fit where the robots met: the
+  // closures into the other robot's submaps fit the two maps over all the
+  // ground they share, which the wide fit would otherwise approximate once.
+  if (config.merge_surroundings_radius > 0.0 && !slam_.config().loop_closure.enabled)
     v.wide_surroundings = surroundings_points(slam_.own_map(), v.pose, config.merge_surroundings_radius,
                                               config.merge_surroundings_points);
   return v;

@@ -118,7 +118,8 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
 
 // With loop closure on a robot localizes in its own submaps, so a peer's
 // scan is placed in its own map, not in own ⊕ the layers merged (one merged
-// a little off would pull the placement its way: docs/loop_closure.md).
+// a little off would pull the placement its way: docs/loop_closure.md), and
+// without the wide surroundings (closures fit the maps over their shared ground).
 TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) {
   const SimulatedRun ra = test::lap(0, 1), rb = test::lap(2, 2);
   const Pose2 start_a = ra.ground_truth.front().second;
@@ -132,6 +133,7 @@ TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) 
   const EncounterConfig config;
   const EncounterView self = a.view(config.locate);
   EXPECT_EQ(self.map, &a.slam().own_map());
+  EXPECT_TRUE(self.wide_surroundings.empty()) << "closures, not one wide fit, place the other map";
   // a's own scan, offered as a peer's would be, lands where a is.
   const Pose2 d = between(self.pose, locate_peer(self, self, config, 7).located.best.pose);
   EXPECT_LT(std::hypot(d.x, d.y), 0.01);
@@ -142,6 +144,7 @@ TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) 
   plain.process(ra.log.scans[0]);
   ASSERT_TRUE(plain.merge(b.snapshot(), Pose2()));
   EXPECT_EQ(plain.view(config.locate).map, &plain.slam().map());
+  EXPECT_FALSE(plain.view(config.locate).wide_surroundings.empty());
   EXPECT_NE(&plain.slam().map(), &plain.slam().own_map());
 }
 
