@@ -46,7 +46,9 @@ struct RelativePoseConfig {
   // lines the two maps up as wholes. Measured on 20 simulated 3-robot runs
   // (transform error against the frames as the maps stood, README): 8 m as
   // for ranking left 8 of 231 merges outside 0.05 m / 0.5 degrees, 15 m 4 of
-  // 220, 25 m 2 of 226, 40 m none of 222. 0 disables.
+  // 220, 25 m 2 of 226, 40 m none of 222. 0 disables. Not used with loop
+  // closure on: there the closures into the other robot's submaps line the
+  // maps up (SwarmAgent::view).
   double merge_surroundings_radius = 40.0;  // m
   int merge_surroundings_points = 8000;
   // Two placements are distinct modes when this far apart (either way).
