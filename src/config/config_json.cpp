@@ -247,6 +247,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"surroundings_points", DSS_SWARM_FIELD(int, encounter.locate.surroundings_points)},
         {"merge_surroundings_radius", DSS_SWARM_FIELD(double, encounter.locate.merge_surroundings_radius)},
         {"merge_surroundings_points", DSS_SWARM_FIELD(int, encounter.locate.merge_surroundings_points)},
+        {"place_in_recent_submaps", DSS_SWARM_FIELD(bool, encounter.locate.place_in_recent_submaps)},
         {"mode_separation_xy", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_xy)},
         {"mode_separation_theta", DSS_SWARM_FIELD(double, encounter.locate.mode_separation_theta)},
         {"possible_same_side", DSS_SWARM_FIELD(double, encounter.locate.possible_same_side)},

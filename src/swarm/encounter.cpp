@@ -50,6 +50,17 @@ PeerPlacement locate_peer(const EncounterView& self, const EncounterView& peer, 
   if (!self.map) throw ConfigError("locate_peer: this robot's view needs its map");
   PeerPlacement p;
   p.located = locate_scan(*self.map, peer.points, self.pose.translation(), config.locate, seed, peer.surroundings);
+  if (self.recent_map) {
+    // Kept when this side trusts it and the peer's surroundings fit it
+    // better: the recent submaps hold less, so they win only where the
+    // composed map disagrees with itself.
+    RelativePoseResult recent = locate_scan(*self.recent_map, peer.points, self.pose.translation(), config.locate,
+                                            seed + 3, peer.surroundings);
+    const bool trusted = placement_problem(recent, config, "", "").empty();
+    if (trusted && (!placement_problem(p.located, config, "", "").empty() ||
+                    recent.best.surroundings_score > p.located.best.surroundings_score))
+      p.located = std::move(recent);
+  }
   p.valid = !peer.points.empty();
   // The merge lines up whole maps, not one scan: a placement this side
   // trusts is refined with the peer's obstacles out to

@@ -11,6 +11,7 @@
 // map for good; a rejected one costs only a wait for the next encounter.
 #include <optional>
 #include <string>
+#include <memory>
 #include <vector>
 
 #include "grid/multires_map.hpp"
@@ -52,6 +53,10 @@ struct EncounterView {
   // The same out to merge_surroundings_radius, for the final transform.
   std::vector<ScanPoint> wide_surroundings;
   std::size_t scan_index = 0;  // the scan's position in the robot's process() order
+  // With loop closure on: the robot's unfinished submaps, where its map
+  // and what it sees now agree even before a loop has closed; the peer is
+  // placed here too (RelativePoseConfig::place_in_recent_submaps).
+  std::shared_ptr<const MultiResMap> recent_map{};
 };
 
 struct EncounterEstimate {

@@ -51,6 +51,12 @@ struct RelativePoseConfig {
   // maps up (SwarmAgent::view).
   double merge_surroundings_radius = 40.0;  // m
   int merge_surroundings_points = 8000;
+  // With loop closure on, the peer is placed in the robot's unfinished
+  // submaps as well, and the better placement kept: where the robot returns to
+  // a place before that loop has closed, its composed map holds both visits
+  // out of line, while its recent submaps hold what it sees now
+  // (SwarmAgent::view, locate_peer).
+  bool place_in_recent_submaps = true;
   // Two placements are distinct modes when this far apart (either way).
   double mode_separation_xy = 0.5;      // m
   double mode_separation_theta = 0.26;  // rad (15°)

@@ -183,6 +183,46 @@ TEST(Encounter, RejectsWhenTheOtherRobotSeesUnmappedSpace) {
   EXPECT_FALSE(estimate_encounter(t.a, t.b, EncounterConfig{}, 5).accepted);
 }
 
+// Robot A came back to where it meets B before closing its loop: its
+// composed map holds an earlier visit of the same ground, 0.25 m / 4° out of
+// line and seen twice as often, while its recent submaps hold what it sees
+// now. The peer is placed in both, and the recent placement kept.
+TEST(Encounter, APeerIsPlacedInTheRecentSubmapsWhereTheComposedMapIsOutOfLine) {
+  TwoRobots t = meet_in_the_office(2);
+  const World world = test::l_shaped_office();
+  const Pose2 a_start{1.5, 1.5, 0.4}, a_world{3.0, 2.0, 0.1};
+  const Pose2 out_of_line{0.25, -0.1, 4.0 * kDeg};
+  Rng rng(21);
+  MultiResMap composed = t.map_a;
+  for (int visit = 0; visit < 2; ++visit)
+    for (int k = 0; k <= 10; ++k) {
+      const Pose2 p = interpolate(a_start, a_world, k / 10.0);
+      composed.insert_scan(out_of_line * (a_start.inverse() * p), Pose2{}, test::scan_at(world, p, rng));
+    }
+  const Pose2 truth = t.b_frame_in_a * t.b.pose;  // B's base in A's frame
+  auto error_of = [&](const PeerPlacement& placed) {
+    const Pose2 d = between(truth, placed.located.best.pose);
+    return std::hypot(d.x, d.y) + std::abs(d.theta);  // metres + radians: both small here
+  };
+  t.a.map = &composed;
+  const PeerPlacement in_composed = locate_peer(t.a, t.b, EncounterConfig{}, 5);
+  t.a.recent_map = std::make_shared<const MultiResMap>(t.map_a);
+  const PeerPlacement in_both = locate_peer(t.a, t.b, EncounterConfig{}, 5);
+  EXPECT_GT(error_of(in_composed), 0.05);
+  EXPECT_LT(error_of(in_both), 0.02);
+  // Where the composed map is in line, it fits better and is kept.
+  t.a.map = &t.map_a;
+  MultiResMap less_of_it;
+  for (int k = 8; k <= 10; ++k) {
+    const Pose2 p = interpolate(a_start, a_world, k / 10.0);
+    less_of_it.insert_scan(a_start.inverse() * p, Pose2{}, test::scan_at(world, p, rng));
+  }
+  t.a.recent_map = std::make_shared<const MultiResMap>(std::move(less_of_it));
+  const PeerPlacement whole = locate_peer(t.a, t.b, EncounterConfig{}, 5);
+  t.a.recent_map = nullptr;
+  EXPECT_EQ(whole.located.best.pose.x, locate_peer(t.a, t.b, EncounterConfig{}, 5).located.best.pose.x);
+}
+
 // The same-side check, at the true placement and across a thin wall. In a
 // corridor most hits meet their wall at a grazing angle; 15 cm back along
 // such a beam is still inside the wall's own cells, so the check steps back

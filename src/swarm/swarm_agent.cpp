@@ -109,6 +109,8 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
   v.pose = slam_.pose();
   v.scan_index = slam_.scans_processed() > 0 ? slam_.scans_processed() - 1 : 0;
   if (last_scan_) v.points = scan_to_points(*last_scan_, slam_.config().points);
+  if (config.place_in_recent_submaps && slam_.config().loop_closure.enabled)
+    v.recent_map = std::make_shared<const MultiResMap>(slam_.unfinished_map());
   v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
                                         config.surroundings_points);
   // With loop closure the transform stays the fit where the robots met: the

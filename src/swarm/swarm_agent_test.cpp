@@ -119,7 +119,8 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
 // With loop closure on a robot localizes in its own submaps, so a peer's
 // scan is placed in its own map, not in own ⊕ the layers merged (one merged
 // a little off would pull the placement its way: docs/loop_closure.md), and
-// without the wide surroundings (closures fit the maps over their shared ground).
+// without the wide surroundings (closures fit the maps over their shared ground),
+// but with its unfinished submaps to place it in as well.
 TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) {
   const SimulatedRun ra = test::lap(0, 1), rb = test::lap(2, 2);
   const Pose2 start_a = ra.ground_truth.front().second;
@@ -134,6 +135,13 @@ TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) 
   const EncounterView self = a.view(config.locate);
   EXPECT_EQ(self.map, &a.slam().own_map());
   EXPECT_TRUE(self.wide_surroundings.empty()) << "closures, not one wide fit, place the other map";
+  // The unfinished submaps come along (the peer is placed there too): a's
+  // own evidence only, the newest of it.
+  ASSERT_NE(self.recent_map, nullptr);
+  EXPECT_EQ(test::largest_difference(self.recent_map->finest(), a.slam().unfinished_map().finest()), 0.0);
+  EncounterConfig whole_only;
+  whole_only.locate.place_in_recent_submaps = false;
+  EXPECT_EQ(a.view(whole_only.locate).recent_map, nullptr);
   // a's own scan, offered as a peer's would be, lands where a is.
   const Pose2 d = between(self.pose, locate_peer(self, self, config, 7).located.best.pose);
   EXPECT_LT(std::hypot(d.x, d.y), 0.01);
@@ -145,6 +153,7 @@ TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) 
   ASSERT_TRUE(plain.merge(b.snapshot(), Pose2()));
   EXPECT_EQ(plain.view(config.locate).map, &plain.slam().map());
   EXPECT_FALSE(plain.view(config.locate).wide_surroundings.empty());
+  EXPECT_EQ(plain.view(config.locate).recent_map, nullptr);
   EXPECT_NE(&plain.slam().map(), &plain.slam().own_map());
 }
 
