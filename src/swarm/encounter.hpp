@@ -9,9 +9,9 @@
 // directions agree (and, with reject_bent_maps, (4) fitting both maps as wholes
 // keeps the transform within that same tolerance). A wrong merge corrupts a
 // map for good; a rejected one costs only a wait for the next encounter.
+#include <memory>
 #include <optional>
 #include <string>
-#include <memory>
 #include <vector>
 
 #include "grid/multires_map.hpp"
