@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <ios>
+#include <system_error>
 
 #include "common/errors.hpp"
 
@@ -28,6 +30,9 @@ class MetadataFile {
 
   YAML::Node information() const {
     YAML::Node root;
+    std::error_code ec;
+    // A folder opens as a stream, and reading it then throws a stream error.
+    if (!fs::is_regular_file(path_, ec)) throw InputError(path_.string() + ": not a file");
     try {
       root = YAML::LoadFile(path_.string());
     } catch (const YAML::BadFile&) {
@@ -35,6 +40,8 @@ class MetadataFile {
     } catch (const YAML::Exception& e) {
       throw InputError(fmt::format("{}: line {}: invalid YAML: {}", path_.string(),
                                    e.mark.line + 1, e.msg));
+    } catch (const std::ios_base::failure& e) {
+      throw InputError(fmt::format("{}: cannot read: {}", path_.string(), e.what()));
     }
     const YAML::Node info = root.IsMap() ? root["rosbag2_bagfile_information"] : YAML::Node();
     if (!info || !info.IsMap()) {

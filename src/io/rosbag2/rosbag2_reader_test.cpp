@@ -261,6 +261,12 @@ TEST(Rosbag2Reader, MetadataYamlProblemsNameTheFileAndLine) {
   write_file_bytes(yaml, "just: text\n");
   message = input_error_of(dir);
   EXPECT_NE(message.find("not a rosbag2 metadata file"), std::string::npos) << message;
+  // A folder named metadata.yaml (found by the scenario fuzzer): an input
+  // error, not the stream error a folder gives when read.
+  fs::remove(yaml);
+  fs::create_directory(yaml);
+  message = input_error_of(dir);
+  EXPECT_NE(message.find(yaml.string() + ": not a file"), std::string::npos) << message;
 }
 
 }  // namespace
