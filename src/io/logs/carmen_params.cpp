@@ -4,10 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "common/errors.hpp"
 
 namespace dsswarm::carmen_detail {
+
+namespace {
+// A laser's beams span at most a full turn; the slack allows for rounding in
+// logs that state the increment to a few digits.
+constexpr double kFullTurn = 2.0 * std::numbers::pi;
+constexpr double kTurnSlack = 1e-3;  // rad
+}  // namespace
 
 void CarmenParams::parse(const Tokens& fields, std::size_t line) {
   const std::string_view key = fields[1];
@@ -99,6 +107,12 @@ BeamGeometry CarmenParams::beam_geometry(std::size_t n, std::size_t line, std::s
     geometry.angle_min = params_.angle_max->value - span_steps * geometry.angle_increment;
   } else {
     geometry.angle_min = -span_steps * geometry.angle_increment / 2.0;
+  }
+  // Each value is finite, but together they may not be (an increment of 1e308).
+  const double span = span_steps * std::abs(geometry.angle_increment);
+  if (!std::isfinite(geometry.angle_min) || !(span <= kFullTurn + kTurnSlack)) {
+    Where{file_, line, type}.fail(fmt::format(
+        "the '# PARAM laser_angle_*' lines give {} beams spanning {} rad, more than a full turn", n, span));
   }
   return geometry;
 }

@@ -79,6 +79,22 @@ TEST(CarmenReader, ParamBeamCountMismatchNamesTheLine) {
   EXPECT_NE(message.find("laser_num_beams"), std::string::npos) << message;
 }
 
+// Found by the carmen_text fuzzer: finite values whose beams together span
+// more than a full turn (or overflow) are an error naming the record.
+TEST(CarmenReader, ParamGeometryBeyondAFullTurnNamesTheLine) {
+  const fs::path path = scratch_dir("params_turn") / "a.log";
+  write_plain(path, "# PARAM laser_angle_increment 1e308\n" + flaser(beams(5), 1.0));
+  std::string message = error_of(path);
+  EXPECT_NE(message.find(path.string() + ":2: FLASER"), std::string::npos) << message;
+  EXPECT_NE(message.find("more than a full turn"), std::string::npos) << message;
+  write_plain(path, "# PARAM laser_angle_min -1\n# PARAM laser_angle_increment 2\n" + flaser(beams(5), 1.0));
+  message = error_of(path);
+  EXPECT_NE(message.find("5 beams spanning 8 rad"), std::string::npos) << message;
+  // A full circle of beams is fine.
+  write_plain(path, "# PARAM laser_angle_increment 1.5707963\n" + flaser(beams(5), 1.0));
+  EXPECT_NO_THROW(read_carmen(path));
+}
+
 TEST(CarmenReader, BadParamValueNamesKeyAndLine) {
   const fs::path path = scratch_dir("params_bad") / "a.log";
   write_plain(path, "# comment\n# PARAM laser_range_max eighty\n" + flaser(beams(5), 1.0));
