@@ -84,9 +84,10 @@ TwoRobots meet(const World& world, const Pose2& a_start, const Pose2& b_start, c
 
 // The scene most tests share: two robots that started across the L-shaped
 // office meet in its long arm, 2 m apart, facing each other.
+const Pose2 kOfficeAStart{1.5, 1.5, 0.4}, kOfficeAWorld{3.0, 2.0, 0.1};
 TwoRobots meet_in_the_office(std::uint64_t seed) {
   Rng rng(seed);
-  return meet(test::l_shaped_office(), {1.5, 1.5, 0.4}, {8.5, 2.0, -2.5}, {3.0, 2.0, 0.1}, {5.0, 2.5, 2.9}, rng);
+  return meet(test::l_shaped_office(), kOfficeAStart, {8.5, 2.0, -2.5}, kOfficeAWorld, {5.0, 2.5, 2.9}, rng);
 }
 
 TEST(Encounter, AcceptsAndRecoversTheTransformBetweenFrames) {
@@ -190,7 +191,7 @@ TEST(Encounter, RejectsWhenTheOtherRobotSeesUnmappedSpace) {
 TEST(Encounter, APeerIsPlacedInTheRecentSubmapsWhereTheComposedMapIsOutOfLine) {
   TwoRobots t = meet_in_the_office(2);
   const World world = test::l_shaped_office();
-  const Pose2 a_start{1.5, 1.5, 0.4}, a_world{3.0, 2.0, 0.1};
+  const Pose2 a_start = kOfficeAStart, a_world = kOfficeAWorld;
   const Pose2 out_of_line{0.25, -0.1, 4.0 * kDeg};
   Rng rng(21);
   MultiResMap composed = t.map_a;
