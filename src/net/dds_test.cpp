@@ -1,10 +1,14 @@
 #include "net/dds.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -43,6 +47,23 @@ std::vector<std::vector<std::uint8_t>> take_packets(const Reader<SwarmPacket>& r
     });
   }
   return got;
+}
+
+// Tests running side by side must not share a domain: each claim holds its
+// domain's lock file, which nobody else can take while the test runs.
+TEST(TestDomain, AClaimedDomainIsTheTestsAloneAndStaysTheSame) {
+  const std::uint32_t first = test::test_domain(0), second = test::test_domain(1);
+  EXPECT_NE(first, second);
+  EXPECT_EQ(test::test_domain(0), first);
+  for (const std::uint32_t domain : {first, second}) {
+    EXPECT_GE(domain, test::kFirstTestDomain);
+    EXPECT_LT(domain, test::kFirstTestDomain + test::kTestDomains);
+    const auto lock = std::filesystem::temp_directory_path() / "dsswarm-test-domains" / (std::to_string(domain) + ".lock");
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CLOEXEC);
+    ASSERT_GE(fd, 0) << lock;
+    EXPECT_NE(::flock(fd, LOCK_EX | LOCK_NB), 0) << domain << " could be claimed twice";
+    ::close(fd);
+  }
 }
 
 TEST(DomainConfig, LoopbackUsesUnicastDiscoveryOn127001) {

@@ -16,10 +16,7 @@
 
 namespace dsswarm::mp {
 
-int test_domain(int k) {
-  const std::size_t h = std::hash<std::string>{}(net::test::test_id());
-  return 100 + static_cast<int>((h + 13 * static_cast<std::size_t>(k)) % 130);  // as net::test::test_domain
-}
+int test_domain(int k) { return static_cast<int>(net::test::test_domain(k)); }
 
 Rig::Rig() : dir_(fs::path(DSSWARM_TEST_TMP) / "multiprocess" / net::test::test_id()) {
   fs::remove_all(dir_);
