@@ -163,8 +163,7 @@ void add_config_command(CLI::App& app) {
                                      "as `run` uses them, or with --swarm as swarm, demo, agent and launch do");
   auto swarm = std::make_shared<bool>(false);
   cmd->add_flag("--swarm", *swarm,
-                "The swarm commands' defaults: loop closure off, and a pose-graph round every 20 nodes when a file "
-                "turns it on (run's: on, 40)");
+                "The swarm commands' defaults: a pose-graph round every 20 nodes (run's: 40)");
   cmd->callback([swarm] {
     SwarmConfig defaults;
     if (!*swarm) defaults.slam = SlamConfig{};

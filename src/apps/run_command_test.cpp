@@ -63,7 +63,7 @@ TEST(ConfigCommand, SwarmFlagPrintsTheSwarmCommandsDefaults) {
   const auto run = nlohmann::json::parse(test::run_cli(add_config_command, {"config"}));
   const auto swarm = nlohmann::json::parse(test::run_cli(add_config_command, {"config", "--swarm"}));
   EXPECT_TRUE(run["loop_closure"]["enabled"].get<bool>());
-  EXPECT_FALSE(swarm["loop_closure"]["enabled"].get<bool>());
+  EXPECT_TRUE(swarm["loop_closure"]["enabled"].get<bool>());
   EXPECT_LT(swarm["loop_closure"]["round_nodes"].get<int>(), run["loop_closure"]["round_nodes"].get<int>());
   SwarmConfig parsed;
   parsed.slam = SlamConfig{};  // start from run's, as a file given to `swarm` overrides everything it names

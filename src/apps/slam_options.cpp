@@ -43,7 +43,7 @@ CLI::Validator non_negative_integer() {
 
 SlamConfig SlamOptions::resolve() const {
   SwarmConfig single;
-  single.slam = SlamConfig{};  // one robot: loop closure on (the swarm's default is off, swarm_config.hpp)
+  single.slam = SlamConfig{};  // one robot: run's rounds (the swarm's are shorter, swarm_config.hpp)
   return resolve(std::move(single)).slam;
 }
 

@@ -122,12 +122,15 @@ TEST(SwarmConfigJson, ParsesTextInMemoryAsItLoadsFiles) {
   }
 }
 
-// One robot maps with loop closure by default; the swarm without
-// (swarm_config.hpp). A file turns it on and keeps the swarm's shorter
-// rounds unless it sets them too.
-TEST(SwarmConfigJson, LoopClosureIsOnForOneRobotOffForTheSwarmAndAFileTurnsItOn) {
+// One robot and the swarm both map with loop closure by default, the swarm
+// with shorter rounds (swarm_config.hpp). A file turns it off, and on again
+// keeps the swarm's rounds unless it sets them too.
+TEST(SwarmConfigJson, LoopClosureIsOnForOneRobotAndTheSwarmAndAFileTurnsItOff) {
   EXPECT_TRUE(SlamConfig{}.loop_closure.enabled);
   SwarmConfig c;
+  EXPECT_TRUE(c.slam.loop_closure.enabled);
+  EXPECT_LT(c.slam.loop_closure.round_nodes, SlamConfig{}.loop_closure.round_nodes);
+  parse_config(R"({"loop_closure": {"enabled": false}})", "inline.json", c);
   EXPECT_FALSE(c.slam.loop_closure.enabled);
   parse_config(R"({"loop_closure": {"enabled": true}})", "inline.json", c);
   EXPECT_TRUE(c.slam.loop_closure.enabled);

@@ -7,7 +7,7 @@
 namespace dsswarm {
 
 SlamConfig swarm_slam_config() {
-  SlamConfig config = without_loop_closure();
+  SlamConfig config;
   config.loop_closure.round_nodes = 20;
   return config;
 }

@@ -8,20 +8,19 @@
 
 namespace dsswarm {
 
-// SLAM as a robot of a swarm runs it by default: loop closure off, and when
-// it is turned on, a round of it every 20 nodes instead of run's 40. An
-// encounter places the other robot's scan in, and merges into, the map as
-// the latest round left it; the staler that is, the further a transform
-// found on it lies from the maps as they end up (docs/loop_closure.md).
+// SLAM as a robot of a swarm runs it by default: loop closure on as in
+// `run`, with a round of it every 20 nodes instead of run's 40. An encounter
+// places the other robot's scan in, and merges into, the map as the latest
+// round left it; the staler that is, the further a transform found on it lies
+// from the maps as they end up (docs/loop_closure.md).
 SlamConfig swarm_slam_config();
 
 struct SwarmConfig {
-  // Loop closure is off in the swarm by default: with it on, the map a robot
-  // places the other's scan in is the combination of its submaps, where a
-  // returning robot's current submap and older ones disagree (moved doors,
-  // people), and on the real-data scenarios far fewer encounters are
-  // accepted (docs/loop_closure.md, "In the swarm").
-  // {"loop_closure": {"enabled": true}} turns it on (swarm_slam_config).
+  // Loop closure is on: robots send their submaps apart, an accepted
+  // encounter is a constraint in each robot's own pose graph, and closures
+  // into the other robots' submaps keep the joint frame in place
+  // (docs/loop_closure.md, "In the swarm"). {"loop_closure": {"enabled":
+  // false}} turns it off: one map per robot, about two thirds of the CPU.
   SlamConfig slam = swarm_slam_config();
   EncounterConfig encounter;
   // Robots that met with an accepted merge skip further encounters for this
