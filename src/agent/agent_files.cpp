@@ -48,6 +48,7 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["messages_rejected"] = r.rejected_by_reason;
   j["moved_received"] = r.moved_received;
   j["moved_bytes_received"] = r.moved_bytes_received;
+  j["messages_deferred"] = r.messages_deferred;
   j["proximity_triggers_late"] = r.triggers_late;
   j["knows"] = nlohmann::json::array();
   for (const MapLayer& l : a.knowledge().layers())

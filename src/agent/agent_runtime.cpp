@@ -211,6 +211,7 @@ AgentReport AgentRuntime::report() const {
     r.rejected_by_reason = gate_.rejected_by_reason();
     r.moved_received = moved_received_;
     r.moved_bytes_received = moved_bytes_received_;
+    r.messages_deferred = sends_.deferred();
   }
   std::lock_guard lock(report_mutex_);
   r.wall_seconds = now();

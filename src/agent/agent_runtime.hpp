@@ -25,6 +25,7 @@
 #include "agent/scan_feed.hpp"
 #include "agent/live_map_output.hpp"
 #include "agent/robot_outputs.hpp"
+#include "agent/send_queue.hpp"
 #include "agent/shared_agent.hpp"
 #include "agent/triggers.hpp"
 #include "common/warning_throttle.hpp"
@@ -67,6 +68,7 @@ struct AgentReport {
   std::uint64_t triggers_late = 0;
   std::uint64_t scans_in_checkpoint = 0;  // resumed: scans received again that the checkpoint holds
   std::uint64_t moved_received = 0, moved_bytes_received = 0;  // peers' word that their maps moved
+  std::uint64_t messages_deferred = 0;  // to a peer whose inbox was full: sent later, in order
   std::vector<protocol::EncounterOutcome> outcomes;
 };
 
@@ -127,6 +129,7 @@ class AgentRuntime {
   };
   std::map<std::string, Peer> peers_;
   std::map<std::pair<std::string, std::uint64_t>, std::vector<std::pair<protocol::Message, std::size_t>>> held_;
+  SendQueue sends_{options_.swarm.exchange_timeout};  // a busy peer's messages wait; after that long it is dropped
   std::map<std::uint64_t, double> event_time_;  // encounter → when its proximity event took effect
   std::vector<protocol::EncounterOutcome> outcomes_;
   WarningThrottle warnings_{"swarm messages", std::chrono::seconds(5)};

@@ -7,7 +7,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <set>
 
 namespace dsswarm::agent {
 namespace {
@@ -41,7 +40,10 @@ void AgentRuntime::swarm_loop() {
       if (!v.rejected.empty()) ++messages_rejected_;
       if (!v.rejected.empty()) warnings_.note(fmt::format("{}: message refused: {}", options_.name, v.rejected));
       if (!v.message) continue;
-      if (v.peer_restarted) engine_->drop_peer(v.message->header.sender, v.message->header.sender + " restarted", t);
+      if (v.peer_restarted) {
+        sends_.forget(v.message->header.sender);
+        engine_->drop_peer(v.message->header.sender, v.message->header.sender + " restarted", t);
+      }
       handle(*v.message, bytes.size(), t);
     }
     std::vector<Trigger> fired;
@@ -119,14 +121,12 @@ void AgentRuntime::start_encounter(const std::string& peer, std::uint64_t id, do
 }
 
 void AgentRuntime::flush_engine() {
-  std::set<std::string> unreachable;
-  for (const protocol::Outgoing& out : engine_->take_outbox())
-    if (!unreachable.contains(out.recipient) && !link_.send(out.recipient, out.bytes)) unreachable.insert(out.recipient);
+  const double t = swarm_now();
+  sends_.retry(link_, t);
+  for (protocol::Outgoing& out : engine_->take_outbox()) sends_.send(link_, out.recipient, std::move(out.bytes), t);
   // An exchange that lost a message cannot finish: end it now rather than
   // hold a slot until it times out.
-  for (const std::string& peer : unreachable)
-    engine_->drop_peer(peer, fmt::format("{} cannot be reached: a message to it was not delivered (gone, or not authorized)", peer),
-                       swarm_now());
+  for (const auto& [peer, why] : sends_.take_given_up()) engine_->drop_peer(peer, why, t);
   for (protocol::EncounterOutcome& o : engine_->take_outcomes()) {
     using End = protocol::EncounterOutcome::End;
     if (o.end == End::accepted || o.end == End::rejected) ++decided_;
@@ -146,6 +146,7 @@ void AgentRuntime::drop_silent_peers(double wall) {
   for (auto& [name, peer] : peers_) {
     if (peer.lost || wall - peer.last_heard <= options_.peer_timeout) continue;
     peer.lost = true;
+    sends_.forget(name);
     engine_->drop_peer(name, fmt::format("no heartbeat from {} for {:.0f} s", name, options_.peer_timeout),
                        swarm_now());
   }

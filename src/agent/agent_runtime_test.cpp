@@ -139,6 +139,7 @@ class SlowLink : public protocol::SwarmLink {
     }
     return inner_->send(recipient, bytes);
   }
+  bool reachable(const std::string& recipient) override { return inner_->reachable(recipient); }
   std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override {
     return inner_->receive(timeout);
   }

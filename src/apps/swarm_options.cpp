@@ -70,6 +70,10 @@ class SwarmNet::StableLink : public protocol::SwarmLink {
     std::shared_lock lock(mutex);
     return net_.dds_link_->send(recipient, bytes);
   }
+  bool reachable(const std::string& recipient) override {
+    std::shared_lock lock(mutex);
+    return net_.dds_link_->reachable(recipient);
+  }
   std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override {
     std::shared_lock lock(mutex);
     return net_.dds_link_->receive(timeout);

@@ -84,6 +84,13 @@ bool DdsSwarmLink::send(const std::string& recipient, std::span<const std::uint8
   return w.writer.try_write(packet);
 }
 
+bool DdsSwarmLink::reachable(const std::string& recipient) {
+  if (recipient.empty() || !is_valid_agent_name(recipient)) return false;
+  std::lock_guard lock(writers_mutex_);
+  const auto it = writers_.find(recipient);
+  return it != writers_.end() && it->second->writer.matched() > 0;
+}
+
 std::vector<std::vector<std::uint8_t>> DdsSwarmLink::receive(std::chrono::milliseconds timeout) {
   std::vector<std::vector<std::uint8_t>> out;
   auto take_all = [&] {

@@ -45,6 +45,7 @@ class DdsSwarmLink : public protocol::SwarmLink {
   ~DdsSwarmLink() override;
 
   bool send(const std::string& recipient, std::span<const std::uint8_t> bytes) override;
+  bool reachable(const std::string& recipient) override;  // an inbox reader is matched
   std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override;
   void wake() override;
 

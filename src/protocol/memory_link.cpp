@@ -13,6 +13,10 @@ class MemoryBus::Link : public SwarmLink {
   bool send(const std::string& recipient, std::span<const std::uint8_t> bytes) override {
     return bus_->deliver(name_, recipient, bytes);
   }
+  bool reachable(const std::string& recipient) override {
+    std::lock_guard lock(bus_->mutex_);
+    return bus_->inboxes_.contains(recipient);
+  }
   std::vector<std::vector<std::uint8_t>> receive(std::chrono::milliseconds timeout) override {
     std::unique_lock lock(bus_->mutex_);
     inbox_->arrived.wait_for(lock, timeout, [&] { return !inbox_->messages.empty() || inbox_->woken; });
