@@ -28,9 +28,9 @@ namespace {
 
 // glibc gives each thread that allocates its own heap (arena) and keeps
 // what was freed there: a robot process (scan, swarm, loop-closing, map and
-// DDS threads) peaked at three times the memory it used (449-531 MB against
-// 152-168 MB with two arenas, docs/swarm_processes.md), at no cost in CPU.
-// MALLOC_ARENA_MAX in the environment still wins.
+// DDS threads) peaked at about three times the memory it used; two arenas
+// cost no CPU (docs/swarm_processes.md). MALLOC_ARENA_MAX in the
+// environment still wins.
 constexpr int kMallocArenas = 2;
 
 void limit_malloc_arenas() {
