@@ -3,6 +3,13 @@
 #include <fmt/format.h>
 
 namespace dsswarm::agent {
+namespace {
+
+std::string unreachable(const std::string& recipient) {
+  return fmt::format("{} cannot be reached: a message to it was not delivered (gone, or not authorized)", recipient);
+}
+
+}  // namespace
 
 void SendQueue::send(protocol::SwarmLink& link, const std::string& recipient, std::vector<std::uint8_t> bytes,
                      double now) {
@@ -14,8 +21,7 @@ void SendQueue::send(protocol::SwarmLink& link, const std::string& recipient, st
   }
   if (link.send(recipient, bytes)) return;
   if (!link.reachable(recipient)) {
-    give_up(recipient, fmt::format("{} cannot be reached: a message to it was not delivered (gone, or not authorized)",
-                                   recipient));
+    give_up(recipient, unreachable(recipient));
     return;
   }
   Waiting& w = waiting_[recipient];
@@ -37,8 +43,7 @@ void SendQueue::retry(protocol::SwarmLink& link, double now) {
       continue;
     }
     if (!link.reachable(recipient))
-      give_up(recipient, fmt::format("{} cannot be reached: a message to it was not delivered (gone, or not authorized)",
-                                     recipient));
+      give_up(recipient, unreachable(recipient));
     else if (now - w.since > patience_)
       give_up(recipient, fmt::format("{} took no message for {:.0f} s (its inbox stayed full)", recipient, patience_));
     else {
