@@ -28,6 +28,17 @@ inline std::string test_id() {
 // Domains 100..229: away from 0 (ROS 2's default) and the low ids people use.
 inline constexpr std::uint32_t kFirstTestDomain = 100, kTestDomains = 130;
 
+// Takes the lock file of `domain` in `dir`: the descriptor holding it, or -1
+// when another claim holds it (a second open of the file conflicts even in
+// this process) or the file cannot be opened.
+inline int lock_domain(const std::filesystem::path& dir, std::uint32_t domain) {
+  const std::string lock = (dir / (std::to_string(domain) + ".lock")).string();
+  const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0 || ::flock(fd, LOCK_EX | LOCK_NB) == 0) return fd;
+  ::close(fd);
+  return -1;
+}
+
 // The running test's k-th domain, claimed for it alone on this machine: a
 // lock file per domain (flock, released when the process ends or the next
 // test of the process claims), so two tests running side by side never share
@@ -56,17 +67,10 @@ inline std::uint32_t test_domain(int k = 0) {
   const std::uint32_t start = static_cast<std::uint32_t>(std::hash<std::string>{}(id + "#" + std::to_string(k)) % kTestDomains);
   for (std::uint32_t i = 0; i < kTestDomains; ++i) {
     const std::uint32_t domain = kFirstTestDomain + (start + i) % kTestDomains;
-    bool mine = false;
-    for (const auto& [other, d] : claims.domains) mine = mine || d == domain;
-    if (mine) continue;
-    const std::string lock = (dir / (std::to_string(domain) + ".lock")).string();
-    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-    if (fd < 0) break;
-    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+    if (const int fd = lock_domain(dir, domain); fd >= 0) {
       claims.fds.push_back(fd);
       return claims.domains[k] = domain;
     }
-    ::close(fd);
   }
   const std::uint32_t fallback = kFirstTestDomain + start;  // no lock possible: the hash alone, as before
   std::cerr << "test_domain: could not claim a domain in " << dir << ", using " << fallback << " unclaimed\n";
