@@ -8,6 +8,7 @@
 #include "common/errors.hpp"
 #include "grid/sampling.hpp"
 #include "matching/scan_scorer.hpp"
+#include "swarm/coarse_search.hpp"
 
 namespace dsswarm {
 
@@ -53,110 +54,6 @@ double evidence_agreement(const DsGrid& grid, const std::vector<ScanPoint>& poin
     sum += 2.0 * interpolated_occupancy(grid, w.x(), w.y(), 0.5f) - 1.0;
   }
   return sum / static_cast<double>(points.size());
-}
-
-struct Coarse {
-  float score;
-  Pose2 pose;
-};
-
-// The coarse level's cell values (cell_value with unknown 0) over a box of
-// cells, dense: the exhaustive search reads each cell thousands of times,
-// and a tile lookup and mass decoding per read were most of its cost. Read
-// through the same bilinear weights, so the same values as
-// interpolated_occupancy to the bit.
-class DenseCells {
- public:
-  // The cells a point within `reach` of `centre` can touch, cut to the
-  // grid's bounds: beyond them every cell is vacuous (value 0), so the box
-  // stops two cells past them and a block of four that leaves it holds only
-  // vacuous cells. A scan point however far (another robot's, off the wire)
-  // costs no memory.
-  DenseCells(const DsGrid& grid, const Eigen::Vector2d& centre, double reach) : inv_res_(1.0 / grid.resolution()) {
-    CellIndex held_lo, held_hi;
-    grid.bounds(held_lo, held_hi);
-    const auto first = [&](double c, std::int32_t held) {
-      return floor_to_cell(std::max((c - reach) * inv_res_ - 2.0, static_cast<double>(held) - 2.0));
-    };
-    const auto last = [&](double c, std::int32_t held) {  // one past
-      return floor_to_cell(std::min((c + reach) * inv_res_ + 3.0, static_cast<double>(held) + 2.0));
-    };
-    lo_ = {first(centre.x(), held_lo.x), first(centre.y(), held_lo.y)};
-    width_ = std::max(0, last(centre.x(), held_hi.x) - lo_.x);
-    height_ = std::max(0, last(centre.y(), held_hi.y) - lo_.y);
-    values_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
-    for (int y = 0; y < height_; ++y)
-      for (int x = 0; x < width_; ++x)
-        values_[index(x, y)] = cell_value(grid.packed_at({lo_.x + x, lo_.y + y}).mass(), 0.0f);
-  }
-  // The value at a world point, bilinear between cell centres (as
-  // bilinear_point places it); 0 where the block around it leaves the box.
-  float at(double wx, double wy) const {
-    const double gx = wx * inv_res_ - 0.5, gy = wy * inv_res_ - 0.5;
-    // Checked before the cell index is taken: a point however far is no overflow.
-    if (!(gx >= lo_.x && gx < lo_.x + width_ - 1 && gy >= lo_.y && gy < lo_.y + height_ - 1)) return 0.0f;
-    const BilinearPoint b = bilinear_cell_point(gx, gy);
-    const float* row = &values_[index(b.corner.x - lo_.x, b.corner.y - lo_.y)];
-    const float* above = row + width_;
-    return b.interpolate(row[0], row[1], above[0], above[1]);
-  }
-
- private:
-  std::size_t index(int x, int y) const {
-    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
-  }
-
-  double inv_res_;
-  CellIndex lo_;
-  int width_ = 0, height_ = 0;
-  std::vector<float> values_;
-};
-
-// Step 1: every heading × every lattice position within the radius, on the coarsest level.
-std::vector<Coarse> exhaustive_search(const DsGrid& grid, const std::vector<ScanPoint>& points,
-                                      const Eigen::Vector2d& near, const RelativePoseConfig& config) {
-  const std::size_t stride = std::max<std::size_t>(1, points.size() / static_cast<std::size_t>(config.coarse_points));
-  std::vector<ScanPoint> subset;
-  for (std::size_t i = 0; i < points.size(); i += stride) subset.push_back(points[i]);
-  double weight_sum = 0.0, farthest = 0.0;
-  for (const ScanPoint& p : subset) {
-    weight_sum += p.weight;
-    farthest = std::max(farthest, std::hypot(double(p.x), double(p.y)));
-  }
-
-  const int steps_xy = static_cast<int>(std::floor(config.search_radius / config.coarse_step_xy));
-  const int headings = std::max(1, static_cast<int>(std::lround(2.0 * std::numbers::pi / config.coarse_step_theta)));
-  const DenseCells cells(grid, near, steps_xy * config.coarse_step_xy + farthest);
-  std::vector<Coarse> all;
-  std::vector<Eigen::Vector2d> rotated(subset.size());
-  for (int h = 0; h < headings; ++h) {
-    const double theta = -std::numbers::pi + 2.0 * std::numbers::pi * h / headings;
-    const PointTransform rotate = PointTransform::rotation(theta);
-    for (std::size_t i = 0; i < subset.size(); ++i) rotated[i] = rotate(subset[i].x, subset[i].y);
-    for (int iy = -steps_xy; iy <= steps_xy; ++iy)
-      for (int ix = -steps_xy; ix <= steps_xy; ++ix) {
-        if (ix * ix + iy * iy > steps_xy * steps_xy) continue;
-        const double px = near.x() + ix * config.coarse_step_xy, py = near.y() + iy * config.coarse_step_xy;
-        double sum = 0.0;
-        for (std::size_t i = 0; i < subset.size(); ++i)
-          sum += subset[i].weight * cells.at(px + rotated[i].x(), py + rotated[i].y());
-        all.push_back({static_cast<float>(weight_sum > 0.0 ? sum / weight_sum : 0.0), Pose2{px, py, theta}});
-      }
-  }
-  return all;
-}
-
-// The best `count` placements that are pairwise distinct modes.
-std::vector<Pose2> distinct_best(std::vector<Coarse> all, int count, const RelativePoseConfig& config) {
-  std::sort(all.begin(), all.end(), [](const Coarse& a, const Coarse& b) { return a.score > b.score; });
-  std::vector<Pose2> chosen;
-  for (const Coarse& c : all) {
-    if (static_cast<int>(chosen.size()) >= count) break;
-    bool distinct = true;
-    for (const Pose2& p : chosen) distinct = distinct && distinct_modes(c.pose, p, config);
-    if (distinct) chosen.push_back(c.pose);
-  }
-  return chosen;
 }
 
 }  // namespace
@@ -206,7 +103,7 @@ RelativePoseResult locate_scan(const MultiResMap& map, const std::vector<ScanPoi
   RelativePoseResult result;
   if (points.empty()) return result;
   const DsGrid& coarse = map.level(map.levels() - 1);
-  std::vector<Coarse> all = exhaustive_search(coarse, points, near, config);
+  std::vector<CoarsePlacement> all = exhaustive_search(coarse, points, near, config);
   result.evaluations = static_cast<int>(all.size());
   const std::vector<Pose2> starts = distinct_best(std::move(all), config.candidates, config);
 

@@ -4,7 +4,7 @@
 // the proximity sensor's range.
 //
 //   1. exhaustive search on the coarsest level: every heading (3° steps) ×
-//      every position on a 0.15 m lattice within the range — cheap there,
+//      every position on a 0.15 m lattice within the range (coarse_search.hpp) — cheap there,
 //      and the coarse level's wide basins make a lattice this sparse safe;
 //   2. the best few distinct modes are refined coarse-to-fine by the
 //      Monte-Carlo matcher (no motion prior: there is no prior);
