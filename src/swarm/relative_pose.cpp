@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "common/errors.hpp"
@@ -17,6 +18,15 @@ void RelativePoseConfig::validate() const {
   if (!(coarse_step_theta >= 0.005 && coarse_step_theta <= 0.5))
     throw ConfigError("encounter.coarse_step_theta must be in [0.005, 0.5] rad");
   if (coarse_points < 10) throw ConfigError("encounter.coarse_points must be >= 10");
+  // The exhaustive search holds every pose of its lattice at once (32 bytes
+  // each, coarse_search.hpp): the default lattice has about 0.15 M.
+  constexpr double kMaxLatticePoses = 5e6;
+  const double cells_across = search_radius / coarse_step_xy;
+  const double lattice = std::numbers::pi * cells_across * cells_across * (2.0 * std::numbers::pi / coarse_step_theta);
+  if (lattice > kMaxLatticePoses)
+    throw ConfigError("encounter.search_radius, coarse_step_xy and coarse_step_theta ask the exhaustive search for " +
+                      std::to_string(std::lround(lattice / 1e6)) + " M poses; at most " +
+                      std::to_string(std::lround(kMaxLatticePoses / 1e6)) + " M fit (a coarser lattice or a smaller radius)");
   if (candidates < 2 || candidates > 100) throw ConfigError("encounter.candidates must be in [2, 100]");
   if (!(surroundings_radius >= 0.0 && surroundings_radius <= 100.0))
     throw ConfigError("encounter.surroundings_radius must be in [0, 100] m");

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/errors.hpp"
 #include "swarm/encounter.hpp"
 #include "swarm/test_scenes.hpp"
 
@@ -276,6 +277,25 @@ TEST(RelativePose, APlacementThatMeetsWallsFromBehindRanksAfterOneThatCanBe) {
   EXPECT_GT(r.best.pose.y, 0.3);
   ASSERT_TRUE(r.runner_up);
   EXPECT_GT(r.runner_up->same_side_ratio, 0.8) << "an impossible placement is no rival to a possible one";
+}
+
+// A lattice too fine for memory is a configuration error naming its fields,
+// not an allocation that brings the robot down.
+TEST(RelativePose, ALatticeTooFineForMemoryIsAConfigError) {
+  RelativePoseConfig config;
+  EXPECT_NO_THROW(config.validate());
+  config.search_radius = 50.0;
+  config.coarse_step_xy = 0.01;
+  try {
+    config.validate();
+    FAIL() << "a lattice of ~10^6 M poses was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("encounter.search_radius"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("coarse_step_xy"), std::string::npos) << e.what();
+  }
+  config.search_radius = 10.0;
+  config.coarse_step_xy = 0.1;  // 31 400 positions x 120 headings: 3.8 M
+  EXPECT_NO_THROW(config.validate());
 }
 
 }  // namespace
