@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "common/errors.hpp"
+#include "config/key_suggestion.hpp"
 
 namespace dsswarm {
 
@@ -285,6 +286,21 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
 #undef DSS_FIELD
 #undef DSS_SWARM_FIELD
 
+// " (did you mean …?)" for an unknown section (`key` empty) or key, or "".
+std::string did_you_mean(std::string_view section, std::string_view key) {
+  static const KnownKeys known = [] {
+    KnownKeys k;
+    for (const auto& [name, members] : fields())
+      for (const auto& member : members) k[name].push_back(member.first);
+    return k;
+  }();
+  const auto guess = suggest_key(known, section, key);
+  if (!guess) return "";
+  if (!key.empty() && guess->find('.') == std::string::npos)
+    return " (did you mean the section '" + *guess + "'? it stands at the top level)";
+  return " (did you mean '" + *guess + "'?)";
+}
+
 // `input` is a stream or a string; `source` names it in errors.
 template <typename Input, typename Config>
 void parse_and_apply(Input&& input, const std::string& source, Config& config) {
@@ -330,11 +346,11 @@ void apply_json(const json& j, SwarmConfig& config, const std::string& source) {
   if (!j.is_object()) throw ConfigError(source + ": expected a JSON object at the top level");
   for (const auto& [section, body] : j.items()) {
     const auto s = fields().find(section);
-    if (s == fields().end()) throw ConfigError(source + ": unknown section '" + section + "'");
+    if (s == fields().end()) throw ConfigError(source + ": unknown section '" + section + "'" + did_you_mean(section, ""));
     if (!body.is_object()) throw ConfigError(source + ": '" + section + "' must be an object");
     for (const auto& [name, value] : body.items()) {
       const auto f = s->second.find(name);
-      if (f == s->second.end()) throw ConfigError(source + ": unknown key '" + section + "." + name + "'");
+      if (f == s->second.end()) throw ConfigError(source + ": unknown key '" + section + "." + name + "'" + did_you_mean(section, name));
       try {
         f->second.set(value, config);
       } catch (const json::exception&) {
