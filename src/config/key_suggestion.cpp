@@ -26,7 +26,7 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 namespace {
 
 // Close enough to be a misspelling rather than another word.
-bool close(std::size_t distance, std::string_view written) { return distance * 3 <= std::max<std::size_t>(written.size(), 3); }
+bool near_enough(std::size_t distance, std::string_view written) { return distance * 3 <= std::max<std::size_t>(written.size(), 3); }
 
 struct Nearest {
   std::size_t distance = static_cast<std::size_t>(-1);
@@ -39,7 +39,7 @@ struct Nearest {
 std::optional<std::string> nearest_section(const KnownKeys& known, std::string_view section) {
   Nearest best;
   for (const auto& [name, keys] : known) best.offer(edit_distance(section, name), name);
-  if (best.name.empty() || !close(best.distance, section)) return std::nullopt;
+  if (best.name.empty() || !near_enough(best.distance, section)) return std::nullopt;
   return best.name;
 }
 
@@ -57,8 +57,8 @@ std::optional<std::string> suggest_key(const KnownKeys& known, std::string_view 
       if (name == section) same.offer(d, name + "." + k);
       any.offer(d, name + "." + k);
     }
-  if (!same.name.empty() && close(same.distance, key)) return same.name;
-  if (!any.name.empty() && close(any.distance, key)) return any.name;
+  if (!same.name.empty() && near_enough(same.distance, key)) return same.name;
+  if (!any.name.empty() && near_enough(any.distance, key)) return any.name;
   return std::nullopt;
 }
 
