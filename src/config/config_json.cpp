@@ -350,7 +350,8 @@ void apply_json(const json& j, SwarmConfig& config, const std::string& source) {
     if (!body.is_object()) throw ConfigError(source + ": '" + section + "' must be an object");
     for (const auto& [name, value] : body.items()) {
       const auto f = s->second.find(name);
-      if (f == s->second.end()) throw ConfigError(source + ": unknown key '" + section + "." + name + "'" + did_you_mean(section, name));
+      if (f == s->second.end())
+        throw ConfigError(source + ": unknown key '" + section + "." + name + "'" + did_you_mean(section, name));
       try {
         f->second.set(value, config);
       } catch (const json::exception&) {

@@ -26,7 +26,9 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 namespace {
 
 // Close enough to be a misspelling rather than another word.
-bool near_enough(std::size_t distance, std::string_view written) { return distance * 3 <= std::max<std::size_t>(written.size(), 3); }
+bool near_enough(std::size_t distance, std::string_view written) {
+  return distance * 3 <= std::max<std::size_t>(written.size(), 3);
+}
 
 struct Nearest {
   std::size_t distance = static_cast<std::size_t>(-1);
