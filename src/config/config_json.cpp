@@ -346,7 +346,8 @@ void apply_json(const json& j, SwarmConfig& config, const std::string& source) {
   if (!j.is_object()) throw ConfigError(source + ": expected a JSON object at the top level");
   for (const auto& [section, body] : j.items()) {
     const auto s = fields().find(section);
-    if (s == fields().end()) throw ConfigError(source + ": unknown section '" + section + "'" + did_you_mean(section, ""));
+    if (s == fields().end())
+      throw ConfigError(source + ": unknown section '" + section + "'" + did_you_mean(section, ""));
     if (!body.is_object()) throw ConfigError(source + ": '" + section + "' must be an object");
     for (const auto& [name, value] : body.items()) {
       const auto f = s->second.find(name);

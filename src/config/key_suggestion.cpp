@@ -49,9 +49,9 @@ std::optional<std::string> nearest_section(const KnownKeys& known, std::string_v
 
 std::optional<std::string> suggest_key(const KnownKeys& known, std::string_view section, std::string_view key) {
   if (key.empty()) return nearest_section(known, section);
+  if (known.contains(key)) return std::string(key);
   for (const auto& [name, keys] : known)
     if (name != section && std::find(keys.begin(), keys.end(), key) != keys.end()) return name + "." + std::string(key);
-  if (known.contains(key)) return std::string(key);
   Nearest same, any;
   for (const auto& [name, keys] : known)
     for (const std::string& k : keys) {

@@ -19,8 +19,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 
 // The known "section.key" (or "section") that `section`.`key` most likely
 // meant, or nothing when none is close. `key` empty: a section name was not
-// known. Tried in order: the key in another section; a section written as a
-// key (e.g. "map.evidence" for the top-level "evidence"); the nearest spelling
+// known. Tried in order: a section written as a key (e.g. "map.evidence" for
+// the top-level "evidence"); the key in another section; the nearest spelling
 // in the same section, then in any section (at most a third of the name's
 // letters wrong).
 std::optional<std::string> suggest_key(const KnownKeys& known, std::string_view section, std::string_view key);

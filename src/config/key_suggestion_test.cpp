@@ -23,12 +23,13 @@ TEST(EditDistance, CountsInsertionsDeletionsAndSubstitutionsIgnoringCase) {
 
 const KnownKeys kKnown{{"map", {"resolution", "levels"}},
                        {"evidence", {"hit_occupied", "pass_free"}},
-                       {"matcher", {"evaluations", "seed"}}};
+                       {"matcher", {"evaluations", "seed"}},
+                       {"loop", {"evidence"}}};
 
 TEST(SuggestKey, NamesTheKnownKeyAWrongOneMostLikelyMeant) {
   EXPECT_EQ(suggest_key(kKnown, "matcher", "evaluatons"), "matcher.evaluations");  // a typo
   EXPECT_EQ(suggest_key(kKnown, "map", "seed"), "matcher.seed");                   // the wrong section
-  EXPECT_EQ(suggest_key(kKnown, "map", "evidence"), "evidence");                   // a section as a key
+  EXPECT_EQ(suggest_key(kKnown, "map", "evidence"), "evidence");  // a section as a key (before loop.evidence)
   EXPECT_EQ(suggest_key(kKnown, "map", "pass_fre"), "evidence.pass_free");         // a typo, wrong section
   EXPECT_EQ(suggest_key(kKnown, "mapp", ""), "map");                               // a section's typo
   EXPECT_EQ(suggest_key(kKnown, "map", "Levels"), "map.levels");
