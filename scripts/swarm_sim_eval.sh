@@ -58,7 +58,10 @@ for k, v in errs.items():
     worst = max(v, key=lambda x: x[0])
     print(f"  {k:14s} median {statistics.median(xy):.3f} m / {statistics.median(th):.2f} deg, 95% {pct(xy,.95):.3f} m / {pct(th,.95):.2f} deg, "
           f"max {max(xy):.3f} m (seed {worst[2]} t={worst[3]:.0f}) / {max(th):.2f} deg, "
-          f"within 0.05 m & 0.5 deg: {sum(1 for x in v if x[0] <= 0.05 and x[1] <= 0.5)}/{len(v)}")
+          f"within 0.05 m & 0.5 deg: {sum(1 for x in v if x[0] <= 0.05 and x[1] <= 0.5)}/{len(v)} "
+          f"(outside by the angle only {sum(1 for x in v if x[0] <= 0.05 and x[1] > 0.5)}, "
+          f"the distance only {sum(1 for x in v if x[0] > 0.05 and x[1] <= 0.5)}, "
+          f"both {sum(1 for x in v if x[0] > 0.05 and x[1] > 0.5)})")
 if cover:
     worst = min(cover)
     print(f"coverage: min {worst[0]*100:.1f}% (seed {worst[1]} {worst[2]}), median {100*statistics.median([c[0] for c in cover]):.1f}%, "
