@@ -34,7 +34,9 @@ struct Nearest {
   std::size_t distance = static_cast<std::size_t>(-1);
   std::string name;
   void offer(std::size_t d, std::string n) {
-    if (d < distance) distance = d, name = std::move(n);
+    if (d >= distance) return;
+    distance = d;
+    name = std::move(n);
   }
 };
 
