@@ -15,6 +15,7 @@ void SlamConfig::validate() const {
   motion.validate();
   verify.validate();
   degeneracy.validate();
+  stall.validate();
   insert.validate();
   submaps.validate();
   loop_closure.validate();
@@ -55,6 +56,7 @@ Slam::Slam(const SlamConfig& config, Executor* background)
       matcher_(config.matcher, config.seed),
       verifier_(config.verify),
       recovery_(config.matcher, config.seed + 1),
+      stall_(config.stall),
       submaps_(config.map, config.active_submaps(), config.insert),
       closer_(config.loop_closure, config.map, config.points, config.seed + 2, background),
       background_(background) {}
@@ -254,9 +256,13 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
     return;
   }
   step.pose = m.pose;
-  if (prior_trusted)
+  if (prior_trusted) {
     if (const std::optional<Eigen::Vector2d> weak = weak_direction(points, config_.degeneracy))
       step.pose = hold_along(step.prior, m.pose, *weak);
+    step.pose = stall_.check(motion_.pose(), step.prior, m.pose, step.pose);
+  } else {
+    stall_.reset();
+  }
   step.matched = true;
   ++matched_;
   verifier_.note_accepted(q, matched_ <= 1);

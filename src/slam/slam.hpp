@@ -35,6 +35,7 @@
 #include "slam/match_verifier.hpp"
 #include "slam/motion_predictor.hpp"
 #include "slam/recovery.hpp"
+#include "slam/stall_guard.hpp"
 #include "slam/standing_still.hpp"
 #include "slam/submaps.hpp"
 
@@ -62,6 +63,9 @@ struct SlamConfig {
   // Where a scan leaves a direction unconstrained (a corridor with its end
   // out of range), the pose along it follows the prediction (degeneracy.hpp).
   DegeneracyConfig degeneracy;
+  // Where the matches stall while odometry drives on, the position along the
+  // motion follows the odometry (stall_guard.hpp).
+  StallConfig stall;
   // A robot whose odometry has not changed for this many scans (after it
   // first moved) is standing still (see standing_still.hpp). Needs use_odometry.
   int pause_after_still_scans = 20;  // 0: never pause
@@ -209,6 +213,7 @@ class Slam {
   MonteCarloMatcher matcher_;
   MatchVerifier verifier_;
   Recovery recovery_;
+  StallGuard stall_;
   GapReviser gaps_;
   Submaps submaps_;
   LoopCloser closer_;
