@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 
 #include <cstdlib>
+#include <algorithm>
 #include <exception>
 #include <numbers>
 #include <string>
@@ -27,6 +28,7 @@ using namespace dsswarm;
 
 constexpr double kFalseXy = 0.2;                            // m
 constexpr double kFalseTheta = 2.0 * std::numbers::pi / 180.0;  // rad
+constexpr std::size_t kShapeScans = 60;  // a false closure's submap judged over this many scans each side
 
 SimulatedRun simulate(const std::string& scene, std::uint64_t seed, double range) {
   if (scene == "building") {
@@ -51,6 +53,24 @@ Trajectory stamped(const SimulatedRun& run, const std::vector<Pose2>& poses) {
   Trajectory t;
   for (std::size_t i = 0; i < poses.size(); ++i) t.push_back({run.log.scans[i].timestamp, poses[i]});
   return t;
+}
+
+// One closure judged false, with how far local SLAM's own poses around the
+// submap node it was checked against are from the truth: when they are far
+// off, the submap itself is out of shape and the verdict is not a clean one.
+void print_false(const SimulatedRun& run, const std::vector<Pose2>& local, const LoopClosure& c, double error_xy,
+                 double error_theta) {
+  const std::size_t n = *c.nearest_scan;
+  double submap_error = 0.0;
+  for (std::size_t j = n > kShapeScans ? n - kShapeScans : 0; j < std::min(local.size(), n + kShapeScans); ++j) {
+    const Pose2 truth = between(run.ground_truth[n].second, run.ground_truth[j].second);
+    const Pose2 d = between(truth, between(local[n], local[j]));
+    submap_error = std::max(submap_error, std::hypot(d.x, d.y));
+  }
+  fmt::print("  false: scan {} (t {:.1f} s) against scan {} (t {:.1f} s): {:.3f} m / {:.2f} deg off; local SLAM within "
+             "{} scans of scan {}: up to {:.3f} m off the truth\n",
+             c.scan, run.log.scans[c.scan].timestamp, n, run.log.scans[n].timestamp, error_xy,
+             error_theta * 180.0 / std::numbers::pi, kShapeScans, n, submap_error);
 }
 
 int run(int argc, char** argv) {
@@ -80,7 +100,10 @@ int run(int argc, char** argv) {
       const Pose2 truth_relative = between(run.ground_truth[*c.nearest_scan].second, run.ground_truth[c.scan].second);
       const Pose2 e = between(truth_relative, c.relative_to_nearest);
       largest = std::max(largest, std::hypot(e.x, e.y));
-      if (std::hypot(e.x, e.y) > kFalseXy || std::abs(e.theta) > kFalseTheta) ++bad;
+      if (std::hypot(e.x, e.y) > kFalseXy || std::abs(e.theta) > kFalseTheta) {
+        ++bad;
+        print_false(run, slam.local_trajectory(), c, std::hypot(e.x, e.y), e.theta);
+      }
     }
     const LoopClosureStats& st = slam.loop_closer().stats();
     fmt::print("{} seed {:3d}: {:5d} scans, ATE local {:.3f} m, closed {:.3f} m; closures {} accepted of {} searches "
