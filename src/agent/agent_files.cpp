@@ -34,6 +34,7 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["scans_in_checkpoint"] = r.scans_in_checkpoint;
   j["scans_matched"] = a.slam().scans_matched();
   j["scans_held"] = a.slam().scans_held();
+  j["scans_stall_held"] = a.slam().scans_stall_held();
   j["matches_rejected"] = a.slam().matches_rejected();
   j["recovery_searches"] = a.slam().recoveries();
   j["wall_seconds"] = r.wall_seconds;

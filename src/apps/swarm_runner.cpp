@@ -221,6 +221,7 @@ SwarmRunResult run_result(const SwarmSession& s) {
     r.knows = a.knowledge().layers();
     r.counters = {{"scans_matched", a.slam().scans_matched()},
                   {"scans_held", a.slam().scans_held()},
+                  {"scans_stall_held", a.slam().scans_stall_held()},
                   {"matches_rejected", a.slam().matches_rejected()},
                   {"recovery_searches", a.slam().recoveries()},
                   {"loop_closures", a.slam().loop_closer().stats().accepted},
