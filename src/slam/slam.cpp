@@ -259,7 +259,8 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
   if (prior_trusted) {
     if (const std::optional<Eigen::Vector2d> weak = weak_direction(points, config_.degeneracy))
       step.pose = hold_along(step.prior, m.pose, *weak);
-    step.pose = stall_.check(motion_.pose(), step.prior, m.pose, step.pose);
+    // A given map (--load-map) is not young: only a map of our own first scans needs the guard.
+    if (!has_initial_map_) step.pose = stall_.check(motion_.pose(), step.prior, m.pose, step.pose);
     if (stall_.holding()) ++stall_held_;
   } else {
     stall_.reset();

@@ -5,7 +5,7 @@
 // scan the match then pulls a moving robot back to where the map began, and
 // every scan it inserts there makes the pull stronger (a simulated robot
 // "stood" for 3.8 m of a corridor whose end was in sight, so the degeneracy
-// check did not apply). The guard compares, over the last metres of
+// check did not apply). The guard compares, over the last stretch of
 // odometry travel, how far the matches moved the robot along the odometry's
 // direction: when they cover too little of it, the position along that
 // direction follows the odometry, as the degeneracy check holds it along a
@@ -19,7 +19,7 @@ namespace dsswarm {
 struct StallConfig {
   double window = 0.2;         // m of odometry travel judged together (0: never)
   double min_progress = 0.25;  // share of that travel the matches must cover too
-  double min_step = 0.001;    // m: odometry steps shorter than this say nothing (turning in place)
+  double min_step = 0.001;     // m: odometry steps shorter than this say nothing (turning in place)
   // Only while the map is young: over the robot's first this many metres of
   // odometry travel (0: always). Later the map holds many viewpoints, and
   // real odometry that disagrees with the matches is usually the odometry's fault.
