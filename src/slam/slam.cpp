@@ -261,7 +261,6 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
       step.pose = hold_along(step.prior, m.pose, *weak);
     // A given map (--load-map) is not young: only a map of our own first scans needs the guard.
     if (!has_initial_map_) step.pose = stall_.check(motion_.pose(), step.prior, m.pose, step.pose);
-    if (stall_.holding()) ++stall_held_;
   } else {
     stall_.reset();
   }

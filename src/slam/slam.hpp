@@ -189,7 +189,7 @@ class Slam {
   std::size_t scans_dropped() const { return filter_.dropped(); }
   std::size_t scans_held() const { return held_; }  // standing still (SlamStep::still)
   // Matches whose position along the motion the stall guard put back to the odometry's.
-  std::size_t scans_stall_held() const { return stall_held_; }
+  std::size_t scans_stall_held() const { return stall_.holds(); }
   double filter_seconds() const { return filter_seconds_; }
   const SlamConfig& config() const { return config_; }
 
@@ -228,7 +228,6 @@ class Slam {
   std::size_t matched_ = 0;
   std::size_t rejected_ = 0;
   std::size_t held_ = 0;
-  std::size_t stall_held_ = 0;
   // own_map() composed on demand, and what it was composed from.
   mutable std::optional<MultiResMap> global_;
   mutable std::pair<std::size_t, std::uint64_t> global_version_{0, 0};

@@ -15,7 +15,6 @@ void StallConfig::validate() const {
 }
 
 Pose2 StallGuard::check(const Pose2& last, const Pose2& prior, const Pose2& raw, const Pose2& matched) {
-  holding_ = false;
   if (config_.window <= 0.0) return matched;
   const Pose2 odometry = between(last, prior);
   const double travel = std::hypot(odometry.x, odometry.y);
@@ -34,7 +33,7 @@ Pose2 StallGuard::check(const Pose2& last, const Pose2& prior, const Pose2& raw,
     steps_.pop_front();
   }
   if (travel_ < config_.window || progress_ >= config_.min_progress * travel_) return matched;
-  holding_ = true;
+  ++holds_;
   // hold_along wants the direction in the prior's frame.
   const Eigen::Vector2d in_prior = PointTransform::rotation(-odometry.theta)(direction.x(), direction.y());
   return hold_along(prior, matched, in_prior);
@@ -43,7 +42,6 @@ Pose2 StallGuard::check(const Pose2& last, const Pose2& prior, const Pose2& raw,
 void StallGuard::reset() {
   steps_.clear();
   travel_ = progress_ = 0.0;
-  holding_ = false;
 }
 
 }  // namespace dsswarm

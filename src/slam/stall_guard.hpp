@@ -10,6 +10,7 @@
 // direction: when they cover too little of it, the position along that
 // direction follows the odometry, as the degeneracy check holds it along a
 // corridor, until the matches keep up again.
+#include <cstddef>
 #include <deque>
 
 #include "geometry/pose2.hpp"
@@ -40,7 +41,8 @@ class StallGuard {
   Pose2 check(const Pose2& last, const Pose2& prior, const Pose2& raw, const Pose2& matched);
   // A scan whose prediction was not trusted: the history no longer compares like with like.
   void reset();
-  bool holding() const { return holding_; }
+  // How many matches check() has put back to the odometry so far.
+  std::size_t holds() const { return holds_; }
 
  private:
   struct Step {
@@ -50,7 +52,7 @@ class StallGuard {
   std::deque<Step> steps_;
   double travel_ = 0.0, progress_ = 0.0;
   double total_travel_ = 0.0;  // since the first scan, never reset
-  bool holding_ = false;
+  std::size_t holds_ = 0;
 };
 
 }  // namespace dsswarm
