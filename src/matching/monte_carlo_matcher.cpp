@@ -229,7 +229,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   const int levels = map.levels();
   // Coarse levels are cheap to search but only place the scan roughly; give
   // the finest level the largest share of the budget.
-  const int fine_budget = levels == 1 ? config_.evaluations : config_.evaluations / 2;
+  int fine_budget = levels == 1 ? config_.evaluations : config_.evaluations / 2;
   const int coarse_budget = levels > 1 ? (config_.evaluations - fine_budget) / (levels - 1) : 0;
 
   const MotionPrior motion{prior, config_.prior_weight, config_.prior_sigma_xy, config_.prior_sigma_theta};
@@ -244,9 +244,19 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   const Pose2 d = between(prior, coarse.pose);
   const bool two_starts = levels > 1 && (std::hypot(d.x, d.y) > fine.resolution() * 0.5 ||
                                          std::abs(d.theta) > config_.polish_step_theta);
-  std::vector<SearchStart> starts{coarse};
-  if (two_starts) starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
   const ScanScorer fine_scorer(fine, *points.level.front(), 1, config_.unknown_value);
+  std::vector<SearchStart> starts{coarse};
+  if (two_starts) {
+    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
+  } else if (levels > 1) {
+    // Within half a cell of each other, yet on the fine level a wall that
+    // lies along the grid makes the score steep: start from the better one,
+    // not from a flank the random phase may leave for another ridge.
+    fine_budget -= 2;
+    result.evaluations += 2;
+    if (fine_scorer.score(prior) > fine_scorer.score(coarse.pose) - motion.penalty(coarse.pose))
+      starts.front().pose = prior;
+  }
   result.pose = search_fine(fine_scorer, *points.level.front(), motion, starts, fine_budget, result.evaluations);
   result.score = fine_scorer.score(result.pose);  // without the penalty
   result.prior_score = fine_scorer.score(prior);
