@@ -56,8 +56,10 @@ TEST(AgentRuntime, ResumesFromItsCheckpointWithNothingLost) {
   const Trajectory t = read_tum(out / "trajectory.tum");
   ASSERT_EQ(t.size(), 30u);  // the first run's poses, then the second's
   EXPECT_DOUBLE_EQ(t[15].timestamp, s.scans[15].timestamp);
-  // It went on in its saved map: the pose stays on the straight drive.
-  const Pose2 truth = Pose2{1.5, 1.5, 0.4}.inverse() * interpolate({1.5, 1.5, 0.4}, {3.0, 2.0, 0.1}, 29.0 / 29.0);
+  // It went on in its saved map: the pose stays on the straight drive (the
+  // map frame is the start turned to the walls: the first pose).
+  const Pose2 truth =
+      t.front().pose * Pose2{1.5, 1.5, 0.4}.inverse() * interpolate({1.5, 1.5, 0.4}, {3.0, 2.0, 0.1}, 29.0 / 29.0);
   EXPECT_NEAR(t.back().pose.x, truth.x, 0.05);
   EXPECT_NEAR(t.back().pose.y, truth.y, 0.05);
   EXPECT_GT(read_checkpoint(out, "a").snapshot.layers.at(0).version, version_before);

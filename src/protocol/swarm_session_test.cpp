@@ -49,8 +49,12 @@ TEST(SwarmSession, RobotsThatMeetMergeAndKnowEachOther) {
   const EncounterRecord& r = session.encounters().back();
   ASSERT_TRUE(r.accepted) << r.reason;
   EXPECT_EQ(r.confirmed_by, "earlier encounter");
-  // b's frame in a's frame, by construction of the two drives.
-  const Pose2 truth = Pose2{1.5, 1.5, 0.4}.inverse() * Pose2{8.5, 2.0, -2.5};
+  // b's frame in a's frame, by construction of the two drives: each map
+  // frame is its robot's start, turned to the office's walls (first pose).
+  const auto frame = [&](std::size_t i, const Pose2& start) {
+    return start * session.agent(i).slam().trajectory().front().inverse();
+  };
+  const Pose2 truth = frame(0, {1.5, 1.5, 0.4}).inverse() * frame(1, {8.5, 2.0, -2.5});
   EXPECT_NEAR(r.b_frame_in_a.x, truth.x, 0.05);
   EXPECT_NEAR(r.b_frame_in_a.y, truth.y, 0.05);
   EXPECT_NEAR(normalize_angle(r.b_frame_in_a.theta - truth.theta), 0.0, 0.01);

@@ -56,16 +56,19 @@ std::optional<Eigen::Vector2d> patch_normal(const std::vector<ScanPoint>& points
 
 }  // namespace
 
+std::vector<Eigen::Vector2d> surface_normals(const std::vector<ScanPoint>& points, const DegeneracyConfig& config) {
+  std::vector<Eigen::Vector2d> normals;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (const std::optional<Eigen::Vector2d> normal = patch_normal(points, i, config)) normals.push_back(*normal);
+  return normals;
+}
+
 std::optional<Eigen::Vector2d> weak_direction(const std::vector<ScanPoint>& points, const DegeneracyConfig& config) {
   if (config.min_ratio <= 0.0) return std::nullopt;
+  const std::vector<Eigen::Vector2d> normals = surface_normals(points, config);
+  if (static_cast<int>(normals.size()) < config.min_normals) return std::nullopt;
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  int normals = 0;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (const std::optional<Eigen::Vector2d> normal = patch_normal(points, i, config)) {
-      scatter += *normal * normal->transpose();
-      ++normals;
-    }
-  if (normals < config.min_normals) return std::nullopt;
+  for (const Eigen::Vector2d& normal : normals) scatter += normal * normal.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen = solve_2x2(scatter);
   if (eigen.eigenvalues()(0) >= config.min_ratio * eigen.eigenvalues()(1)) return std::nullopt;
   return eigen.eigenvectors().col(0).normalized();

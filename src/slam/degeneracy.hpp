@@ -37,6 +37,10 @@ struct DegeneracyConfig {
   void validate() const;  // throws ConfigError naming the field
 };
 
+// The unit surface normals (robot base frame, sign arbitrary) of the points
+// whose neighbourhood is a line (see DegeneracyConfig).
+std::vector<Eigen::Vector2d> surface_normals(const std::vector<ScanPoint>& points, const DegeneracyConfig& config);
+
 // The direction (unit, robot base frame) the scan leaves unconstrained, if any.
 std::optional<Eigen::Vector2d> weak_direction(const std::vector<ScanPoint>& points, const DegeneracyConfig& config);
 

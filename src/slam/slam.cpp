@@ -16,6 +16,7 @@ void SlamConfig::validate() const {
   verify.validate();
   degeneracy.validate();
   stall.validate();
+  align.validate();
   insert.validate();
   submaps.validate();
   loop_closure.validate();
@@ -115,6 +116,11 @@ SlamStep Slam::process(const LaserScan& scan) {
   const std::vector<ScanPoint> points = scan_to_points(scan, config_.points);
   const bool enough_points = static_cast<int>(points.size()) >= config_.min_points;
   step.pose = step.prior;
+  if (first && !has_initial_map_) {
+    // A new map's axes along the first scan's walls (wall_alignment.hpp).
+    if (const auto axis = wall_axis(surface_normals(points, config_.degeneracy), config_.align))
+      step.pose = step.prior = turned_to_walls(step.prior, *axis);
+  }
   if (first && has_initial_map_ && enough_points) {
     locate_in_initial_map(points, step);
   } else if (!first && enough_points) {
@@ -201,15 +207,22 @@ void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep&
   // when the match from it fails or lands mostly off the map, the start
   // itself is searched from too, and the match more of whose points land on
   // walls wins. Not both always: the better score would often pick an
-  // aliased place (a corridor looks alike all along).
-  const Pose2& start = motion_.pose();
+  // aliased place (a corridor looks alike all along). Likewise the prior
+  // turned to the walls: a map whose axes were turned to its first scan's
+  // walls (wall_alignment.hpp) lies turned against the odometry frame.
   const bool doubtful = verifier_.rejects(q) || q.known_fraction < config_.verify.min_known;
-  if (doubtful && (start.x != step.prior.x || start.y != step.prior.y || start.theta != step.prior.theta)) {
-    const MatchResult from_start = recovery_.locate(map, points, start);
-    const MatchQuality sq = match_quality(map.finest(), points, from_start.pose);
-    if (sq.known_fraction * sq.inlier_ratio > q.known_fraction * q.inlier_ratio) {
-      m = from_start;
-      q = sq;
+  if (doubtful) {
+    std::vector<Pose2> others{motion_.pose()};
+    if (const auto axis = wall_axis(surface_normals(points, config_.degeneracy), config_.align))
+      others.push_back(turned_to_walls(step.prior, *axis));
+    for (const Pose2& other : others) {
+      if (other.x == step.prior.x && other.y == step.prior.y && other.theta == step.prior.theta) continue;
+      const MatchResult found = recovery_.locate(map, points, other);
+      const MatchQuality fq = match_quality(map.finest(), points, found.pose);
+      if (fq.known_fraction * fq.inlier_ratio > q.known_fraction * q.inlier_ratio) {
+        m = found;
+        q = fq;
+      }
     }
   }
   step.pose = m.pose;

@@ -36,6 +36,7 @@
 #include "slam/motion_predictor.hpp"
 #include "slam/recovery.hpp"
 #include "slam/stall_guard.hpp"
+#include "slam/wall_alignment.hpp"
 #include "slam/standing_still.hpp"
 #include "slam/submaps.hpp"
 
@@ -66,6 +67,8 @@ struct SlamConfig {
   // Where the matches stall while odometry drives on, the position along the
   // motion follows the odometry (stall_guard.hpp).
   StallConfig stall;
+  // A new map's axes run along its first scan's walls (wall_alignment.hpp).
+  WallAlignConfig align;
   // A robot whose odometry has not changed for this many scans (after it
   // first moved) is standing still (see standing_still.hpp). Needs use_odometry.
   int pause_after_still_scans = 20;  // 0: never pause
