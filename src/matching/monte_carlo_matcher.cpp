@@ -37,9 +37,8 @@ namespace matcher_detail {
 
 // Pose score minus a small penalty for straying from the prior: the motion
 // model's voice in the search. Near the optimum it is negligible (1 cm costs
-// 3e-4 at the defaults, where the scan score changes by ~0.05); it stops the
-// search from jumping to a ridge a few cells over for a marginally better
-// fit (at 1e-4 per cm, simulated robots slid 2 cells sideways for +0.02).
+// 1e-4 at the defaults, where the scan score changes by ~0.05); it only stops
+// the search from jumping tens of centimetres for a marginally better fit.
 struct MotionPrior {
   Pose2 pose;
   double weight = 0.0;  // 0: no penalty

@@ -60,7 +60,7 @@ struct MatcherConfig {
   // Motion prior: every candidate's score is reduced by
   // prior_weight × (|Δxy|²/prior_sigma_xy² + Δθ²/prior_sigma_theta²) relative
   // to the prior it was searched from (0 disables).
-  double prior_weight = 0.03;
+  double prior_weight = 0.01;
   double prior_sigma_xy = 0.1;     // m
   double prior_sigma_theta = 0.1;  // rad
   // Share of a cell's unknown mass that counts as occupancy when scoring

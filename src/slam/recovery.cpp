@@ -8,9 +8,6 @@ MatcherConfig Recovery::wide(const MatcherConfig& normal) {
   c.sigma_xy = normal.sigma_xy * 3;
   c.sigma_theta = normal.sigma_theta * 4;
   c.patience = normal.patience * 2;
-  // Its prediction failed: a third of the motion prior's weight (the wide
-  // search kept the 0.01 it had when the normal matcher's went to 0.03).
-  c.prior_weight = normal.prior_weight / 3;
   // The rare hard case: every point scores (merging trades precision for speed).
   c.fine_merge_cells = 0.0;
   c.coarse_merge_cells = 0.0;
