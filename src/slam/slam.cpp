@@ -216,7 +216,7 @@ void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep&
     if (const auto axis = wall_axis(surface_normals(points, config_.degeneracy), config_.align))
       others.push_back(turned_to_walls(step.prior, *axis));
     for (const Pose2& other : others) {
-      if (other.x == step.prior.x && other.y == step.prior.y && other.theta == step.prior.theta) continue;
+      if (same_pose(other, step.prior)) continue;
       const MatchResult found = recovery_.locate(map, points, other);
       const MatchQuality fq = match_quality(map.finest(), points, found.pose);
       if (fq.known_fraction * fq.inlier_ratio > q.known_fraction * q.inlier_ratio) {
