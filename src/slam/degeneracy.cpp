@@ -54,21 +54,31 @@ std::optional<Eigen::Vector2d> patch_normal(const std::vector<ScanPoint>& points
   return eigen.eigenvectors().col(0);
 }
 
+// Calls `use` with each point's normal, where it has one.
+template <class Use>
+void for_each_normal(const std::vector<ScanPoint>& points, const DegeneracyConfig& config, Use use) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (const std::optional<Eigen::Vector2d> normal = patch_normal(points, i, config)) use(*normal);
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector2d> surface_normals(const std::vector<ScanPoint>& points, const DegeneracyConfig& config) {
   std::vector<Eigen::Vector2d> normals;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (const std::optional<Eigen::Vector2d> normal = patch_normal(points, i, config)) normals.push_back(*normal);
+  for_each_normal(points, config, [&](const Eigen::Vector2d& n) { normals.push_back(n); });
   return normals;
 }
 
 std::optional<Eigen::Vector2d> weak_direction(const std::vector<ScanPoint>& points, const DegeneracyConfig& config) {
   if (config.min_ratio <= 0.0) return std::nullopt;
-  const std::vector<Eigen::Vector2d> normals = surface_normals(points, config);
-  if (static_cast<int>(normals.size()) < config.min_normals) return std::nullopt;
+  // Summed as they come: this runs on every matched scan, no list needed.
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Eigen::Vector2d& normal : normals) scatter += normal * normal.transpose();
+  int normals = 0;
+  for_each_normal(points, config, [&](const Eigen::Vector2d& n) {
+    scatter += n * n.transpose();
+    ++normals;
+  });
+  if (normals < config.min_normals) return std::nullopt;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen = solve_2x2(scatter);
   if (eigen.eigenvalues()(0) >= config.min_ratio * eigen.eigenvalues()(1)) return std::nullopt;
   return eigen.eigenvectors().col(0).normalized();
