@@ -35,6 +35,7 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["scans_matched"] = a.slam().scans_matched();
   j["scans_held"] = a.slam().scans_held();
   j["scans_stall_held"] = a.slam().scans_stall_held();
+  j["scans_jump_held"] = a.slam().scans_jump_held();
   j["matches_rejected"] = a.slam().matches_rejected();
   j["recovery_searches"] = a.slam().recoveries();
   j["wall_seconds"] = r.wall_seconds;

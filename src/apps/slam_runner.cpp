@@ -74,6 +74,7 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   j["scans_dropped"] = slam.scans_dropped();
   j["scans_held"] = slam.scans_held();
   j["scans_stall_held"] = slam.scans_stall_held();
+  j["scans_jump_held"] = slam.scans_jump_held();
   j["drop_ratio"] = result.scans_read > 0 ? static_cast<double>(slam.scans_dropped()) / static_cast<double>(result.scans_read) : 0.0;
   j["filter_seconds"] = slam.filter_seconds();
   j["recovery_searches"] = slam.recoveries();

@@ -222,6 +222,7 @@ SwarmRunResult run_result(const SwarmSession& s) {
     r.counters = {{"scans_matched", a.slam().scans_matched()},
                   {"scans_held", a.slam().scans_held()},
                   {"scans_stall_held", a.slam().scans_stall_held()},
+                  {"scans_jump_held", a.slam().scans_jump_held()},
                   {"matches_rejected", a.slam().matches_rejected()},
                   {"recovery_searches", a.slam().recoveries()},
                   {"loop_closures", a.slam().loop_closer().stats().accepted},

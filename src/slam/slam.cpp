@@ -16,6 +16,7 @@ void SlamConfig::validate() const {
   verify.validate();
   degeneracy.validate();
   stall.validate();
+  jump.validate();
   align.validate();
   insert.validate();
   submaps.validate();
@@ -58,6 +59,7 @@ Slam::Slam(const SlamConfig& config, Executor* background)
       verifier_(config.verify),
       recovery_(config.matcher, config.seed + 1),
       stall_(config.stall),
+      jump_(config.jump),
       submaps_(config.map, config.active_submaps(), config.insert),
       closer_(config.loop_closure, config.map, config.points, config.seed + 2, background),
       background_(background) {}
@@ -270,12 +272,19 @@ void Slam::match_and_verify(const std::vector<ScanPoint>& points, SlamStep& step
   }
   step.pose = m.pose;
   if (prior_trusted) {
+    Pose2 raw = m.pose;
+    if (jump_.holds_at_prior(step.prior, raw, m.score - m.prior_score)) {
+      raw = step.prior;
+      step.score = m.prior_score;
+    }
+    step.pose = raw;
     if (const std::optional<Eigen::Vector2d> weak = weak_direction(points, config_.degeneracy))
-      step.pose = hold_along(step.prior, m.pose, *weak);
+      step.pose = hold_along(step.prior, raw, *weak);
     // A given map (--load-map) is not young: only a map of our own first scans needs the guard.
-    if (!has_initial_map_) step.pose = stall_.check(motion_.pose(), step.prior, m.pose, step.pose);
+    if (!has_initial_map_) step.pose = stall_.check(motion_.pose(), step.prior, raw, step.pose);
   } else {
     stall_.reset();
+    jump_.reset();
   }
   step.matched = true;
   ++matched_;

@@ -35,6 +35,7 @@
 #include "slam/match_verifier.hpp"
 #include "slam/motion_predictor.hpp"
 #include "slam/recovery.hpp"
+#include "slam/jump_guard.hpp"
 #include "slam/stall_guard.hpp"
 #include "slam/wall_alignment.hpp"
 #include "slam/standing_still.hpp"
@@ -67,6 +68,9 @@ struct SlamConfig {
   // Where the matches stall while odometry drives on, the position along the
   // motion follows the odometry (stall_guard.hpp).
   StallConfig stall;
+  // A match that leaps from a trusted prediction for little gain is held at
+  // the prediction (jump_guard.hpp).
+  JumpConfig jump;
   // A new map's axes run along its first scan's walls (wall_alignment.hpp).
   WallAlignConfig align;
   // A robot whose odometry has not changed for this many scans (after it
@@ -193,6 +197,8 @@ class Slam {
   std::size_t scans_held() const { return held_; }  // standing still (SlamStep::still)
   // Matches whose position along the motion the stall guard put back to the odometry's.
   std::size_t scans_stall_held() const { return stall_.holds(); }
+  // Matches the jump guard held at the prediction.
+  std::size_t scans_jump_held() const { return jump_.holds(); }
   double filter_seconds() const { return filter_seconds_; }
   const SlamConfig& config() const { return config_; }
 
@@ -219,6 +225,7 @@ class Slam {
   MatchVerifier verifier_;
   Recovery recovery_;
   StallGuard stall_;
+  JumpGuard jump_;
   GapReviser gaps_;
   Submaps submaps_;
   LoopCloser closer_;
