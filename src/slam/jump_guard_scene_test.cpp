@@ -1,10 +1,9 @@
-// The jump guard in a whole pipeline: robot 2 of the simulated swarm's seed 1,
-// whose match at one scan leaps two cells across a corridor for a slightly
-// better score and stays there without the guard.
+// The jump guard in a whole pipeline. Real leaps are rare and depend on the
+// last bits of floating point (robot 2 of the simulated swarm's seed 1 leaps
+// two cells at scan 464 in a GCC build, not in a clang one; docs/loop_closure.md,
+// "A leap two cells over"),
+// so this checks the wiring with a guard that judges every match a leap.
 #include <gtest/gtest.h>
-
-#include <algorithm>
-#include <cmath>
 
 #include "sim/swarm_sim.hpp"
 #include "slam/slam.hpp"
@@ -12,42 +11,37 @@
 namespace dsswarm {
 namespace {
 
-struct GuardedRun {
-  double worst_drift = 0.0;  // m: the largest position error against the truth, both taken from the first pose
-  std::size_t holds = 0;
+struct HeldRun {
+  std::size_t holds = 0, at_prediction = 0;
 };
 
-GuardedRun run_guarded(const SimulatedRun& run, bool guard, std::size_t scans) {
+HeldRun run_with(const JumpConfig& jump, const SimulatedRun& run, std::size_t scans) {
   SlamConfig config = with_loop_closure(SlamConfig{});
-  if (!guard) config.jump.confirm = 0;
+  config.jump = jump;
   Slam slam(config);
-  GuardedRun r;
-  Pose2 first;
-  const Pose2 truth_first = run.ground_truth.front().second;
+  HeldRun r;
   for (std::size_t i = 0; i < scans; ++i) {
-    const Pose2 pose = slam.process(run.log.scans[i]).pose;
-    if (i == 0) first = pose;
-    const Pose2 moved = between(first, pose), truth = between(truth_first, run.ground_truth[i].second);
-    r.worst_drift = std::max(r.worst_drift, std::hypot(moved.x - truth.x, moved.y - truth.y));
+    const SlamStep step = slam.process(run.log.scans[i]);
+    if (step.matched && same_pose(step.pose, step.prior)) ++r.at_prediction;
   }
   r.holds = slam.scans_jump_held();
   return r;
 }
 
-TEST(JumpGuardScene, ARobotStaysOnItsMapWhereAMatchWouldLeapTwoCells) {
+TEST(JumpGuardScene, AHeldMatchLeavesItsScanAtThePrediction) {
   SwarmSimConfig sim;
   sim.seed = 1;
   const SimulatedRun run = simulate_swarm(sim).runs[1];
-  const std::size_t scans = 600;
+  const std::size_t scans = 300;
   ASSERT_GT(run.log.scans.size(), scans);
-  const GuardedRun guarded = run_guarded(run, true, scans);
-  const GuardedRun plain = run_guarded(run, false, scans);
-  std::printf("worst drift: guarded %.3f m (%zu held), unguarded %.3f m\n", guarded.worst_drift, guarded.holds,
-              plain.worst_drift);
-  EXPECT_GE(guarded.holds, 1u);
+  // Every match that moved at all is a leap, none scores enough, none is believed.
+  const JumpConfig every{.factor = 1e-9, .min_distance = 0.0, .min_gain = 1.0, .confirm = 1000000};
+  const HeldRun held = run_with(every, run, scans);
+  EXPECT_GT(held.holds, scans / 2);
+  EXPECT_GE(held.at_prediction, held.holds);
+  const HeldRun plain = run_with(JumpConfig{.confirm = 0}, run, scans);
   EXPECT_EQ(plain.holds, 0u);
-  // Without the guard the robot ends up 0.09 m off (gcc build), two cells.
-  EXPECT_LT(guarded.worst_drift, 0.06);
+  EXPECT_LT(plain.at_prediction, scans / 10);
 }
 
 }  // namespace
