@@ -188,6 +188,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"stall_min_progress", DSS_FIELD(double, stall.min_progress)},
         {"stall_min_step", DSS_FIELD(double, stall.min_step)},
         {"stall_young_travel", DSS_FIELD(double, stall.young_travel)},
+        {"stall_catch_up", DSS_FIELD(bool, stall.catch_up)},
         {"jump_factor", DSS_FIELD(double, jump.factor)},
         {"jump_min_distance", DSS_FIELD(double, jump.min_distance)},
         {"jump_min_gain", DSS_FIELD(double, jump.min_gain)},

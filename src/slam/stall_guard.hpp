@@ -9,9 +9,13 @@
 // odometry travel, how far the matches moved the robot along the odometry's
 // direction: when they cover too little of it, the position along that
 // direction follows the odometry, as the degeneracy check holds it along a
-// corridor, until the matches keep up again.
+// corridor, until the matches keep up again. When it steps in, the robot is
+// also moved on by what the window's matches fell short (catch_up), so the
+// stall leaves no lasting offset behind the first scans.
 #include <cstddef>
 #include <deque>
+
+#include <Eigen/Core>
 
 #include "geometry/pose2.hpp"
 
@@ -25,6 +29,7 @@ struct StallConfig {
   // odometry travel (0: always). Later the map holds many viewpoints, and
   // real odometry that disagrees with the matches is usually the odometry's fault.
   double young_travel = 5.0;
+  bool catch_up = true;  // on stepping in, also make up what the matches fell short since the last time
 
   void validate() const;  // throws ConfigError naming the field
 };
@@ -47,10 +52,12 @@ class StallGuard {
  private:
   struct Step {
     double travel, progress;
+    Eigen::Vector2d behind;  // map frame: how far this step's match fell short, not yet made up
   };
   StallConfig config_;
   std::deque<Step> steps_;
   double travel_ = 0.0, progress_ = 0.0;
+  Eigen::Vector2d behind_ = Eigen::Vector2d::Zero();  // sum over steps_
   double total_travel_ = 0.0;  // since the first scan, never reset
   std::size_t holds_ = 0;
 };

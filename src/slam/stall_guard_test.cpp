@@ -36,6 +36,20 @@ TEST(StallGuard, AMapThatHoldsTheRobotBackIsOverruledAlongTheMotion) {
   EXPECT_NEAR(end.theta, 0.5, 1e-9);
 }
 
+TEST(StallGuard, WhenItStepsInTheRobotIsMovedOnByWhatTheMatchesFellShort) {
+  // Driving 3 m at 6 cm per scan from the start while the matches stand still.
+  StallDrive d{StallGuard(StallConfig{}), Pose2(1.0, 2.0, 0.5)};
+  const Pose2 end = d.go(50, 0.06, 0.5, 0.0);
+  EXPECT_NEAR(std::hypot(end.x - 1.0, end.y - 2.0), 3.0, 1e-9);
+  EXPECT_NEAR(std::atan2(end.y - 2.0, end.x - 1.0), 0.5, 1e-9);  // along the motion
+  // Without catching up, the 0.18 m before it stepped in stay lost.
+  StallConfig config;
+  config.catch_up = false;
+  StallDrive behind{StallGuard(config), Pose2(1.0, 2.0, 0.5)};
+  const Pose2 lagging = behind.go(50, 0.06, 0.5, 0.0);
+  EXPECT_NEAR(std::hypot(lagging.x - 1.0, lagging.y - 2.0), 3.0 - 0.18, 1e-9);
+}
+
 TEST(StallGuard, MatchesThatKeepUpAreLeftAlone) {
   StallDrive d{StallGuard(StallConfig{}), Pose2()};
   const Pose2 end = d.go(50, 0.06, 0.0, 0.9);
