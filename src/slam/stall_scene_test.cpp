@@ -13,12 +13,17 @@
 namespace dsswarm {
 namespace {
 
-TEST(StallScene, LocalSlamKeepsUpWithARobotLeavingItsFirstViewpoint) {
+// The simulated building's tour for `seed`, seen with a 30 m lidar.
+SimulatedRun building_tour(std::uint64_t seed) {
   DemoConfig demo;
-  demo.world.seed = 34;
-  demo.seed = 34;
+  demo.world.seed = seed;
+  demo.seed = seed;
   demo.lidar.range_max = 30.0;
-  const SimulatedRun run = simulate_demo(demo);
+  return simulate_demo(demo);
+}
+
+TEST(StallScene, LocalSlamKeepsUpWithARobotLeavingItsFirstViewpoint) {
+  const SimulatedRun run = building_tour(34);
   const std::size_t scans = 150;  // 9 m straight down the corridor
   ASSERT_GT(run.log.scans.size(), scans);
   SlamConfig config = with_loop_closure(SlamConfig{});
@@ -37,11 +42,7 @@ TEST(StallScene, LocalSlamKeepsUpWithARobotLeavingItsFirstViewpoint) {
 // up then puts the rest of the run back in line with the first scans instead
 // of 0.18 m behind them for good.
 TEST(StallScene, AStallLeavesNoLastingOffsetOnceTheGuardCatchesUp) {
-  DemoConfig demo;
-  demo.world.seed = 4;
-  demo.seed = 4;
-  demo.lidar.range_max = 30.0;
-  const SimulatedRun run = simulate_demo(demo);
+  const SimulatedRun run = building_tour(4);
   const std::size_t scans = 150;
   ASSERT_GT(run.log.scans.size(), scans);
   const Pose2 truth = between(run.ground_truth.front().second, run.ground_truth[scans - 1].second);
