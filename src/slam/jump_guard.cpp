@@ -27,8 +27,9 @@ bool JumpGuard::holds_at_prior(const Pose2& prior, const Pose2& matched, double 
   if (config_.confirm == 0) return false;
   const double moved = std::hypot(matched.x - prior.x, matched.y - prior.y);
   const bool judged = corrections_.size() >= static_cast<std::size_t>(config_.min_history);
-  const bool leap =
-      judged && moved > std::max(config_.min_distance, config_.factor * typical()) && gain < config_.min_gain;
+  // The percentile last: most matches are ruled out by distance alone, and it sorts the history.
+  const bool leap = judged && moved > config_.min_distance && gain < config_.min_gain &&
+                    moved > config_.factor * typical();
   if (!leap) {
     asked_ = 0;
     corrections_.push_back(moved);
