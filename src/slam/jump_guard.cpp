@@ -9,6 +9,7 @@ namespace dsswarm {
 
 void JumpConfig::validate() const {
   if (!(factor > 0.0)) throw ConfigError("slam.jump_factor must be > 0");
+  if (!(percentile >= 0.0 && percentile <= 1.0)) throw ConfigError("slam.jump_percentile must be in [0, 1]");
   if (!(min_distance >= 0.0)) throw ConfigError("slam.jump_min_distance must be >= 0");
   if (!(min_gain >= 0.0)) throw ConfigError("slam.jump_min_gain must be >= 0");
   if (history < 1) throw ConfigError("slam.jump_history must be >= 1");
@@ -18,7 +19,8 @@ void JumpConfig::validate() const {
 
 double JumpGuard::typical() const {
   scratch_.assign(corrections_.begin(), corrections_.end());
-  const auto nth = scratch_.begin() + static_cast<std::ptrdiff_t>(scratch_.size() * 9 / 10);
+  const auto k = static_cast<std::size_t>(config_.percentile * static_cast<double>(scratch_.size()));
+  const auto nth = scratch_.begin() + static_cast<std::ptrdiff_t>(std::min(k, scratch_.size() - 1));
   std::nth_element(scratch_.begin(), nth, scratch_.end());
   return *nth;
 }

@@ -17,7 +17,8 @@
 namespace dsswarm {
 
 struct JumpConfig {
-  double factor = 10.0;        // a leap: this many times the recent corrections' 90th percentile, or more
+  double factor = 10.0;        // a leap: this many times the recent corrections' `percentile`, or more
+  double percentile = 0.9;     // of the recent corrections: the typical one, with a few large ones allowed
   double min_distance = 0.06;  // m: never a leap below this (a cell and a bit)
   double min_gain = 0.08;      // a leap scoring this much better than the prediction is believed
   int history = 200;           // recent corrections kept (trusted predictions only)
@@ -39,7 +40,7 @@ class JumpGuard {
   std::size_t holds() const { return holds_; }
 
  private:
-  double typical() const;  // the recent corrections' 90th percentile
+  double typical() const;  // the recent corrections' percentile
 
   JumpConfig config_;
   std::deque<double> corrections_;

@@ -35,6 +35,17 @@ TEST(JumpGuard, ScalesWithTheCorrectionsPoorOdometryNeeds) {
   EXPECT_TRUE(guard.holds_at_prior(Pose2(), Pose2(0.35, 0.0, 0.0), 0.0));
 }
 
+TEST(JumpGuard, TheTypicalCorrectionIsTheConfiguredPercentile) {
+  // Three in ten matches need a few centimetres: the 90th percentile is one
+  // of those, the median is not.
+  JumpGuard p90(JumpConfig{});
+  JumpGuard p50(JumpConfig{.percentile = 0.5});
+  for (JumpGuard* g : {&p90, &p50})
+    for (int i = 0; i < 100; ++i) ASSERT_FALSE(g->holds_at_prior(Pose2(), Pose2(i % 10 < 3 ? 0.03 : 0.004, 0.0, 0.0), 0.01));
+  EXPECT_FALSE(p90.holds_at_prior(Pose2(), Pose2(0.1, 0.0, 0.0), 0.0));
+  EXPECT_TRUE(p50.holds_at_prior(Pose2(), Pose2(0.1, 0.0, 0.0), 0.0));
+}
+
 TEST(JumpGuard, NeverHoldsBelowItsMinimumDistance) {
   JumpGuard guard(JumpConfig{});
   feed(guard, 100, 0.0);  // a perfect prediction every time
@@ -70,6 +81,7 @@ TEST(JumpGuard, OffWhenConfirmIsZero) {
 TEST(JumpGuard, ConfigErrorsNameTheField) {
   EXPECT_THROW(JumpConfig{.factor = 0.0}.validate(), ConfigError);
   EXPECT_THROW(JumpConfig{.min_gain = -1.0}.validate(), ConfigError);
+  EXPECT_THROW(JumpConfig{.percentile = 1.5}.validate(), ConfigError);
   try {
     JumpConfig{.history = 10, .min_history = 20}.validate();
     FAIL() << "no error";

@@ -17,6 +17,8 @@ struct VerifyConfig {
   double min_inliers = 0.3;
   double relative = 0.75;
   int max_consecutive = 10;
+  // Weight of each accepted match in the running average (exponential).
+  double average_weight = 0.1;
 
   void validate() const;  // throws ConfigError naming the field
 };

@@ -1,13 +1,22 @@
 #include "slam/recovery.hpp"
 
+#include "common/errors.hpp"
+
 namespace dsswarm {
 
-MatcherConfig Recovery::wide(const MatcherConfig& normal) {
+void RecoveryConfig::validate() const {
+  if (evaluations_factor < 1 || patience_factor < 1)
+    throw ConfigError("slam.recovery_evaluations_factor and recovery_patience_factor must be >= 1");
+  if (!(sigma_xy_factor > 0.0) || !(sigma_theta_factor > 0.0))
+    throw ConfigError("slam.recovery_sigma_xy_factor and recovery_sigma_theta_factor must be > 0");
+}
+
+MatcherConfig Recovery::wide(const MatcherConfig& normal, const RecoveryConfig& config) {
   MatcherConfig c = normal;
-  c.evaluations = normal.evaluations * 4;
-  c.sigma_xy = normal.sigma_xy * 3;
-  c.sigma_theta = normal.sigma_theta * 4;
-  c.patience = normal.patience * 2;
+  c.evaluations = normal.evaluations * config.evaluations_factor;
+  c.sigma_xy = normal.sigma_xy * config.sigma_xy_factor;
+  c.sigma_theta = normal.sigma_theta * config.sigma_theta_factor;
+  c.patience = normal.patience * config.patience_factor;
   // The rare hard case: every point scores (merging trades precision for speed).
   c.fine_merge_cells = 0.0;
   c.coarse_merge_cells = 0.0;

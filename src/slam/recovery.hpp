@@ -9,9 +9,21 @@
 
 namespace dsswarm {
 
+// How much wider and costlier than the normal match (MatcherConfig) the
+// search is; it scores every point (merging trades precision for speed).
+struct RecoveryConfig {
+  int evaluations_factor = 4;
+  double sigma_xy_factor = 3.0;
+  double sigma_theta_factor = 4.0;
+  int patience_factor = 2;
+
+  void validate() const;  // throws ConfigError naming the field
+};
+
 class Recovery {
  public:
-  Recovery(const MatcherConfig& normal, std::uint64_t seed) : matcher_(wide(normal), seed) {}
+  Recovery(const MatcherConfig& normal, const RecoveryConfig& config, std::uint64_t seed)
+      : matcher_(wide(normal, config), seed) {}
 
   // Searches from every prediction in `priors`; counts one recovery search.
   MatchResult search(const MultiResMap& map, const std::vector<ScanPoint>& points, const std::vector<Pose2>& priors);
@@ -22,7 +34,7 @@ class Recovery {
   std::size_t searches() const { return searches_; }
 
  private:
-  static MatcherConfig wide(const MatcherConfig& normal);
+  static MatcherConfig wide(const MatcherConfig& normal, const RecoveryConfig& config);
 
   MonteCarloMatcher matcher_;
   std::size_t searches_ = 0;

@@ -14,6 +14,7 @@ void SlamConfig::validate() const {
   matcher.validate();
   motion.validate();
   verify.validate();
+  recovery.validate();
   degeneracy.validate();
   stall.validate();
   jump.validate();
@@ -57,7 +58,7 @@ Slam::Slam(const SlamConfig& config, Executor* background)
       standing_still_(config.pause_after_still_scans, config.use_odometry),
       matcher_(config.matcher, config.seed),
       verifier_(config.verify),
-      recovery_(config.matcher, config.seed + 1),
+      recovery_(config.matcher, config.recovery, config.seed + 1),
       stall_(config.stall),
       jump_(config.jump),
       submaps_(config.map, config.active_submaps(), config.insert),

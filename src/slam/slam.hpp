@@ -62,6 +62,8 @@ struct SlamConfig {
   int min_points = 20;         // scans with fewer valid points are not matched (pose = prior)
   MotionConfig motion;
   VerifyConfig verify;
+  // The wider search for a match that fails verification (recovery.hpp).
+  RecoveryConfig recovery;
   // Where a scan leaves a direction unconstrained (a corridor with its end
   // out of range), the pose along it follows the prediction (degeneracy.hpp).
   DegeneracyConfig degeneracy;

@@ -34,6 +34,8 @@ void RelativePoseConfig::validate() const {
   if (!(merge_surroundings_radius >= 0.0 && merge_surroundings_radius <= 100.0))
     throw ConfigError("encounter.merge_surroundings_radius must be in [0, 100] m");
   if (merge_surroundings_points < 0) throw ConfigError("encounter.merge_surroundings_points must be >= 0");
+  if (!(polish_sigma_xy > 0.0) || !(polish_sigma_theta > 0.0))
+    throw ConfigError("encounter.polish_sigma_xy and polish_sigma_theta must be > 0");
   if (!(mode_separation_xy > 0.0) || !(mode_separation_theta > 0.0))
     throw ConfigError("encounter.mode_separation_xy and mode_separation_theta must be > 0");
   if (!(possible_same_side >= 0.0 && possible_same_side <= 1.0))
@@ -73,8 +75,8 @@ MatchResult refine_placement(const MultiResMap& map, const std::vector<ScanPoint
   std::vector<ScanPoint> both = points;
   both.insert(both.end(), surroundings.begin(), surroundings.end());
   MatcherConfig fine = config.refine;
-  fine.sigma_xy = 0.03;
-  fine.sigma_theta = 0.01;
+  fine.sigma_xy = config.polish_sigma_xy;
+  fine.sigma_theta = config.polish_sigma_theta;
   MonteCarloMatcher polisher(fine, seed);
   return polisher.match(map, both, start);
 }

@@ -51,6 +51,10 @@ struct RelativePoseConfig {
   // maps up (SwarmAgent::view).
   double merge_surroundings_radius = 40.0;  // m
   int merge_surroundings_points = 8000;
+  // The last refinement of a placement with the surroundings
+  // (refine_placement, step 3's and the merge's) starts this narrow.
+  double polish_sigma_xy = 0.03;     // m
+  double polish_sigma_theta = 0.01;  // rad
   // With loop closure on, the peer is placed in the robot's unfinished
   // submaps as well, and the better placement kept: where the robot returns to
   // a place before that loop has closed, its composed map holds both visits
