@@ -12,7 +12,12 @@ namespace dsswarm {
 // `raster` (the first agent's merged map) with every path the first agent can
 // place (`frames[i]`: agent i's map frame in agent 0's), each in its colour
 // from a disc where it started, the encounters (black disc: accepted, red
-// ring: rejected), and below it a legend and a scale bar.
+// ring: rejected), and below it a legend and a scale bar. Another robot's path
+// past the last map of it the first agent holds (SwarmAgentResult::map_versions)
+// is drawn pale: the ground it crossed then is not in that map.
+// The colour of a path past the map held: `c` most of the way to white.
+Rgb pale(Rgb c);
+
 Image swarm_picture(const SwarmRunResult& run, const GridRaster& raster,
                     const std::vector<std::optional<Pose2>>& frames);
 

@@ -216,6 +216,7 @@ SwarmRunResult run_result(const SwarmSession& s) {
     r.name = a.name();
     const AgentTrack& t = s.track(i);
     for (std::size_t k = 0; k < t.steps.size(); ++k) r.trajectory.push_back({t.timestamps[k], t.steps[k].pose});
+    r.map_versions = t.map_versions;
     r.own_map = shared(a.slam().own_map());
     r.working_map = shared(a.slam().map());
     r.knows = a.knowledge().layers();

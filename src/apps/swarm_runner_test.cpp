@@ -91,7 +91,9 @@ TEST(SwarmPicture, LegendScaleBarAndPathsAPersonCanTellApart) {
   session.run();
   const GridRaster raster = session.agent(0).slam().map().finest().to_raster();
   const std::vector<std::optional<Pose2>> frames = {Pose2(), Pose2(0.5, 0.5, 0.0)};
-  const Image picture = swarm_picture(run_result(session), raster, frames);
+  SwarmRunResult run = run_result(session);
+  run.agents[1].map_versions.clear();  // all of b's path in its colour (they never met)
+  const Image picture = swarm_picture(run, raster, frames);
   const Image map = render_map(raster, fitting_scale(raster));
   ASSERT_GT(picture.height, map.height);
   auto count = [&](Rgb colour, int y0, int y1) {
@@ -109,6 +111,46 @@ TEST(SwarmPicture, LegendScaleBarAndPathsAPersonCanTellApart) {
   draw_polyline(hairline, raster, path, agent_colour(1), 1);
   const auto thin = std::count(hairline.pixels.begin(), hairline.pixels.end(), agent_colour(1));
   EXPECT_GE(count(agent_colour(1), 0, map.height), 2 * thin) << "paths are hairlines";
+}
+
+// Another robot's path past the last map of it the first robot holds is pale:
+// that ground is not in the map drawn.
+TEST(SwarmPicture, AnotherRobotsPathPastTheMapHeldIsPale) {
+  SwarmSession session(streams({"a", "b"}), {}, SwarmConfig{});
+  session.run();
+  const GridRaster raster = session.agent(0).slam().map().finest().to_raster();
+  const std::vector<std::optional<Pose2>> frames = {Pose2(), Pose2(0.5, 0.5, 0.0)};
+  const int map_height = render_map(raster, fitting_scale(raster)).height;
+  auto count = [&](const Image& picture, Rgb colour) {
+    int n = 0;
+    for (int y = 0; y < map_height; ++y)
+      for (int x = 0; x < picture.width; ++x) n += picture.at(x, y) == colour ? 1 : 0;
+    return n;
+  };
+  const Rgb full = agent_colour(1), faded = pale(agent_colour(1));
+  SwarmRunResult run = run_result(session);
+  const std::vector<std::size_t>& versions = run.agents[1].map_versions;
+  ASSERT_EQ(versions.size(), run.agents[1].trajectory.size());
+  ASSERT_GT(versions.back(), versions.front());
+  // Versions unknown: all in its colour, as before.
+  SwarmRunResult unknown = run;
+  unknown.agents[1].map_versions.clear();
+  const Image all = swarm_picture(unknown, raster, frames);
+  EXPECT_EQ(count(all, faded), 0);
+  // They never met: a holds nothing of b, whose path is pale (its start marker is not).
+  const Image none = swarm_picture(run, raster, frames);
+  EXPECT_GT(count(none, faded), 20);
+  EXPECT_LT(count(none, full) + 20, count(all, full));
+  // a holds b's map as it stood halfway: its first half in its colour, the rest pale.
+  MapLayer held;
+  held.origin = "b";
+  held.version = versions[versions.size() / 2];
+  held.hops = 1;
+  run.agents[0].knows.push_back(held);
+  const Image some = swarm_picture(run, raster, frames);
+  EXPECT_GT(count(some, full), count(none, full) + 20);
+  EXPECT_LT(count(some, full) + 20, count(all, full));
+  EXPECT_GT(count(some, faded), 20);
 }
 
 TEST(SwarmReport, SkippedEventsSayWhy) {

@@ -19,6 +19,9 @@ namespace dsswarm {
 struct SwarmAgentResult {
   std::string name;
   Trajectory trajectory;  // poses in its own map frame, every scan, play order
+  // Its own map's version (scans in it) after each of those scans, when
+  // known: a layer of version v that others hold covers the path while ≤ v.
+  std::vector<std::size_t> map_versions;
   std::shared_ptr<const MultiResMap> own_map;      // only its own scans
   std::shared_ptr<const MultiResMap> working_map;  // own ⊕ everything received
   std::vector<MapLayer> knows;  // what it holds of others (origin, version, hops, frame)

@@ -149,6 +149,7 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
     AgentTrack& track = tracks_[who];
     agents_[who]->install_due(scan.timestamp, true);
     track.steps.push_back(agents_[who]->process(scan));
+    track.map_versions.push_back(agents_[who]->own_version());
     for (const PoseRevision& r : track.steps.back().revised) track.steps[r.index].pose = r.pose;
     robots_[who]->engine.announce_moves(when);
     pump(when);

@@ -55,6 +55,7 @@ EncounterRecord make_record(const protocol::EncounterOutcome& a, const protocol:
 struct AgentTrack {
   std::vector<double> timestamps;  // log timestamps of the scans played, in play order
   std::vector<SlamStep> steps;
+  std::vector<std::size_t> map_versions;  // the own map's version (SwarmAgent::own_version) after each scan
 };
 
 class SwarmSession {
