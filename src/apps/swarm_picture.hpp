@@ -15,10 +15,10 @@ namespace dsswarm {
 // ring: rejected), and below it a legend and a scale bar. Another robot's path
 // past the last map of it the first agent holds (SwarmAgentResult::map_versions)
 // is drawn pale: the ground it crossed then is not in that map.
-// The colour of a path past the map held: `c` most of the way to white.
-Rgb pale(Rgb c);
-
 Image swarm_picture(const SwarmRunResult& run, const GridRaster& raster,
                     const std::vector<std::optional<Pose2>>& frames);
+
+// The colour of a path past the map held: `c` most of the way to white.
+Rgb pale(Rgb c);
 
 }  // namespace dsswarm
