@@ -66,6 +66,12 @@ struct Search {
     ++used;
     return scorer.score(p) - prior.penalty(p);
   }
+  // A pose scored before the search began: charged like any evaluation
+  // (the budget counts poses considered), not scored again.
+  double known(double s) {
+    ++used;
+    return s;
+  }
   double sample(const Pose2& p) {
     ++used;
     return (sampler ? *sampler : scorer).score(p) - prior.penalty(p);
@@ -245,21 +251,23 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   const bool two_starts = levels > 1 && (std::hypot(d.x, d.y) > fine.resolution() * 0.5 ||
                                          std::abs(d.theta) > config_.polish_step_theta);
   const ScanScorer fine_scorer(fine, *points.level.front(), 1, config_.unknown_value);
+  result.prior_score = fine_scorer.score(prior);
   std::vector<SearchStart> starts{coarse};
   if (two_starts) {
-    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25});
+    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25, result.prior_score - motion.penalty(prior)});
   } else if (levels > 1) {
     // Within half a cell of each other, yet on the fine level a wall that
     // lies along the grid makes the score steep: start from the better one,
     // not from a flank the random phase may leave for another ridge.
     fine_budget -= 2;
     result.evaluations += 2;
-    if (fine_scorer.score(prior) > fine_scorer.score(coarse.pose) - motion.penalty(coarse.pose))
-      starts.front().pose = prior;
+    const double coarse_score = fine_scorer.score(coarse.pose) - motion.penalty(coarse.pose);
+    const bool from_prior = result.prior_score > coarse_score;
+    if (from_prior) starts.front().pose = prior;
+    starts.front().fine_score = from_prior ? result.prior_score - motion.penalty(prior) : coarse_score;
   }
   result.pose = search_fine(fine_scorer, *points.level.front(), motion, starts, fine_budget, result.evaluations);
   result.score = fine_scorer.score(result.pose);  // without the penalty
-  result.prior_score = fine_scorer.score(prior);
   return result;
 }
 
@@ -297,7 +305,7 @@ Pose2 MonteCarloMatcher::search_fine(const ScanScorer& fine_scorer, const std::v
   std::vector<Racer> racers;
   for (SearchStart& start : starts) {
     Search search{fine_scorer, per_start, motion, sampler ? &*sampler : nullptr};
-    double score = search.score(start.pose);
+    double score = start.fine_score ? search.known(*start.fine_score) : search.score(start.pose);
     random_phase(search, 0, start.pose, score, start.sigma_xy, start.sigma_th);
     evaluations += search.used;
     racers.push_back({polish_from(start.pose, score, fine_scorer.grid(), 0), per_start - search.used});

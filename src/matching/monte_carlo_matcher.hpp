@@ -8,6 +8,7 @@
 // deterministic coordinate ascent, and stops after a fixed budget of pose
 // evaluations — so its cost per scan is bounded.
 #include <cstdint>
+#include <optional>
 
 #include "common/rng.hpp"
 #include "geometry/pose2.hpp"
@@ -103,6 +104,7 @@ class MonteCarloMatcher {
   struct SearchStart {
     Pose2 pose;
     double sigma_xy, sigma_th;
+    std::optional<double> fine_score = std::nullopt;  // at `pose` on the finest level less the penalty, if scored
   };
   // The coarse levels, coarsest first, each from the last one's answer:
   // leaves `best` where the finest level starts, with its spreads.
