@@ -32,12 +32,7 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["scans_processed"] = s.scans_processed;
   j["scans_skipped"] = s.scans_skipped;
   j["scans_in_checkpoint"] = r.scans_in_checkpoint;
-  j["scans_matched"] = a.slam().scans_matched();
-  j["scans_held"] = a.slam().scans_held();
-  j["scans_stall_held"] = a.slam().scans_stall_held();
-  j["scans_jump_held"] = a.slam().scans_jump_held();
-  j["matches_rejected"] = a.slam().matches_rejected();
-  j["recovery_searches"] = a.slam().recoveries();
+  for (const auto& [name, count] : a.slam().scan_counters()) j[name] = count;
   j["wall_seconds"] = r.wall_seconds;
   j["cpu_seconds"] = r.cpu_seconds;
   j["largest_scan_gap_ms"] = r.largest_gap_ms;

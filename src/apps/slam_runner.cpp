@@ -70,15 +70,10 @@ nlohmann::json run_stats(const RunResult& result, const Slam& slam, const Sensor
   nlohmann::json j;
   j["source"] = log.source;
   j["scans_read"] = result.scans_read;
-  j["scans_matched"] = result.scans_matched;
+  for (const auto& [name, count] : slam.scan_counters()) j[name] = count;
   j["scans_dropped"] = slam.scans_dropped();
-  j["scans_held"] = slam.scans_held();
-  j["scans_stall_held"] = slam.scans_stall_held();
-  j["scans_jump_held"] = slam.scans_jump_held();
   j["drop_ratio"] = result.scans_read > 0 ? static_cast<double>(slam.scans_dropped()) / static_cast<double>(result.scans_read) : 0.0;
   j["filter_seconds"] = slam.filter_seconds();
-  j["recovery_searches"] = slam.recoveries();
-  j["matches_rejected"] = slam.matches_rejected();
   j["wall_seconds"] = result.wall_seconds;
   j["scans_per_second"] = result.wall_seconds > 0 ? static_cast<double>(result.scans_read) / result.wall_seconds : 0.0;
   j["read_seconds"] = read_seconds;

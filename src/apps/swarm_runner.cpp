@@ -220,14 +220,9 @@ SwarmRunResult run_result(const SwarmSession& s) {
     r.own_map = shared(a.slam().own_map());
     r.working_map = shared(a.slam().map());
     r.knows = a.knowledge().layers();
-    r.counters = {{"scans_matched", a.slam().scans_matched()},
-                  {"scans_held", a.slam().scans_held()},
-                  {"scans_stall_held", a.slam().scans_stall_held()},
-                  {"scans_jump_held", a.slam().scans_jump_held()},
-                  {"matches_rejected", a.slam().matches_rejected()},
-                  {"recovery_searches", a.slam().recoveries()},
-                  {"loop_closures", a.slam().loop_closer().stats().accepted},
-                  {"loop_closures_into_others_maps", a.slam().loop_closer().stats().foreign_accepted}};
+    for (const auto& [name, count] : a.slam().scan_counters()) r.counters[name] = count;
+    r.counters["loop_closures"] = a.slam().loop_closer().stats().accepted;
+    r.counters["loop_closures_into_others_maps"] = a.slam().loop_closer().stats().foreign_accepted;
     run.agents.push_back(std::move(r));
   }
   return run;

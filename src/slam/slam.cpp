@@ -148,6 +148,12 @@ SlamStep Slam::finish_step(SlamStep step, const LaserScan& scan, const std::vect
   return step;
 }
 
+std::vector<std::pair<const char*, std::size_t>> Slam::scan_counters() const {
+  return {{"scans_matched", scans_matched()},       {"scans_held", scans_held()},
+          {"scans_stall_held", scans_stall_held()}, {"scans_jump_held", scans_jump_held()},
+          {"matches_rejected", matches_rejected()}, {"recovery_searches", recoveries()}};
+}
+
 void Slam::finish() {
   if (!localize_only_) submaps_.freeze();
   closer_.finish(submaps_);

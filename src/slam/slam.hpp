@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "filter/scan_filter.hpp"
@@ -202,6 +203,9 @@ class Slam {
   // Matches the jump guard held at the prediction.
   std::size_t scans_jump_held() const { return jump_.holds(); }
   double filter_seconds() const { return filter_seconds_; }
+  // The per-scan counters above, named as the outputs' stats.json report them:
+  // one list, so a new counter reaches `run`'s, the swarm's and the agent's stats.
+  std::vector<std::pair<const char*, std::size_t>> scan_counters() const;
   const SlamConfig& config() const { return config_; }
 
  private:

@@ -6,7 +6,9 @@
 
 #include <iostream>
 #include <limits>
+#include <map>
 #include <optional>
+#include <string>
 
 namespace dsswarm {
 namespace {
@@ -308,6 +310,13 @@ TEST(Slam, ARobotStandingStillHoldsItsPoseAndStopsAddingEvidence) {
   EXPECT_GT(inserted_when_stopping, 0u);
   EXPECT_EQ(slam.scans_inserted(), inserted_when_stopping);  // nothing added while still
   EXPECT_EQ(slam.scans_held(), 36u);
+  // The outputs' stats report the counters by these names.
+  std::map<std::string, std::size_t> named;
+  for (const auto& [name, count] : slam.scan_counters()) EXPECT_TRUE(named.emplace(name, count).second) << name;
+  EXPECT_EQ(named.at("scans_held"), 36u);
+  EXPECT_EQ(named.at("scans_matched"), slam.scans_matched());
+  EXPECT_EQ(named.at("matches_rejected"), slam.matches_rejected());
+  EXPECT_EQ(named.size(), 6u);
   EXPECT_NEAR(slam.pose().x, 1.9, 0.05);
   // Moving again resumes matching and insertion.
   LaserScan s = simulate(w, Pose2(2.0, 0, 0), 6.0);
