@@ -138,9 +138,10 @@ std::uint64_t SharedAgent::graph_revision() const {
   return agent_->graph_revision();
 }
 
-MapMoves SharedAgent::map_moves(const std::vector<TieScan>& ties) const {
+MapMoves SharedAgent::map_moves(const std::string& peer, const std::vector<TieScan>& ties,
+                                std::size_t max_closures) const {
   std::lock_guard lock(mutex_);
-  return agent_->moves(ties);
+  return agent_->moves(peer, ties, max_closures);
 }
 
 void SharedAgent::follow(const std::string& peer, const MapMoves& moves) {

@@ -47,7 +47,8 @@ class SharedAgent : public protocol::AgentPort {
   void merge(MapSnapshot snapshot, const Pose2& sender_in_self, const protocol::CapturedView& at,
              std::uint64_t encounter) override;
   std::uint64_t graph_revision() const override;
-  MapMoves map_moves(const std::vector<TieScan>& ties) const override;
+  MapMoves map_moves(const std::string& peer, const std::vector<TieScan>& ties,
+                     std::size_t max_closures) const override;
   void follow(const std::string& peer, const MapMoves& moves) override;
 
   // Reads under the lock.

@@ -301,7 +301,9 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"remembered_encounters", DSS_SWARM_FIELD(std::size_t, remembered_encounters)},
         {"max_transfer_bytes", DSS_SWARM_FIELD(std::size_t, max_transfer_bytes)},
         {"moves_interval", DSS_SWARM_FIELD(double, moves_interval)},
-        {"max_followed_encounters", DSS_SWARM_FIELD(std::size_t, max_followed_encounters)}}},
+        {"max_followed_encounters", DSS_SWARM_FIELD(std::size_t, max_followed_encounters)},
+        {"max_moved_closures", DSS_SWARM_FIELD(std::size_t, max_moved_closures)},
+        {"final_exchanges", DSS_SWARM_FIELD(int, final_exchanges)}}},
   };
   return table;
 }

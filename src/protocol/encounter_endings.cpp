@@ -123,7 +123,7 @@ void EncounterEngine::announce_moves(double now, bool force) {
   const std::uint64_t revision = port_.graph_revision();
   const std::vector<std::string> due = followers_.due(revision, now, force);
   for (const std::string& peer : due) {
-    MapMoves moves = port_.map_moves(followers_.ties(peer));
+    MapMoves moves = port_.map_moves(peer, followers_.ties(peer), config_.max_moved_closures);
     if (!moves.pieces.empty() || !moves.ties.empty()) send(nullptr, peer, Moved{std::move(moves)});
     followers_.told(peer, revision, now);
   }

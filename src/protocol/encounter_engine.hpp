@@ -69,7 +69,10 @@ class AgentPort {
   // scans at `ties`); and a peer's word that its map moved. The defaults
   // are a robot whose map never moves.
   virtual std::uint64_t graph_revision() const { return 0; }
-  virtual MapMoves map_moves(const std::vector<TieScan>& /*ties*/) const { return {}; }
+  virtual MapMoves map_moves(const std::string& /*peer*/, const std::vector<TieScan>& /*ties*/,
+                             std::size_t /*max_closures*/) const {
+    return {};
+  }
   virtual void follow(const std::string& /*peer*/, const MapMoves& /*moves*/) {}
 };
 

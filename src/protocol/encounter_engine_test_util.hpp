@@ -54,8 +54,9 @@ class FakeRobot : public AgentPort {
 
   // Loop closing as the engine sees it: a revision, and its one submap at x = revision.
   std::uint64_t graph_revision() const override { return revision; }
-  MapMoves map_moves(const std::vector<TieScan>& ties) const override {
-    MapMoves m{revision, {{1, Pose2(static_cast<double>(revision), 0.0, 0.0)}}, {}};
+  MapMoves map_moves(const std::string& /*peer*/, const std::vector<TieScan>& ties,
+                     std::size_t /*max_closures*/) const override {
+    MapMoves m{revision, {{1, Pose2(static_cast<double>(revision), 0.0, 0.0)}}, {}, {}};
     for (const TieScan& t : ties) m.ties.push_back({t.encounter, t.offered, t.offered * Pose2(0.1, 0.0, 0.0)});
     return m;
   }

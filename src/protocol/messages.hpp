@@ -21,8 +21,10 @@
 // After an accepted encounter, a robot with loop closure on tells the peer
 // (a Moved, at most every `moves_interval` s) whenever its loop closures
 // moved its submaps or its scan of that encounter: the peer's copy of its
-// map and the tie between the two graphs follow (swarm/map_snapshot.hpp,
-// MapMoves). Older agents refuse this kind and count it; nothing else changes.
+// map and the tie between the two graphs follow, and its closures into the
+// peer's map join the peer's graph (swarm/map_snapshot.hpp, MapMoves).
+// Older agents refuse this kind and count it; nothing else changes. A Moved
+// without closures (agents before 2026-12-07) is read as having none.
 #include <cstdint>
 #include <limits>
 #include <optional>

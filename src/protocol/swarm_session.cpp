@@ -58,7 +58,10 @@ struct SwarmSession::Robot {
       if (agent_.absorb(snapshot, sender_in_self)) agent_.schedule_merge(encounter, at.stamp);
     }
     std::uint64_t graph_revision() const override { return agent_.graph_revision(); }
-    MapMoves map_moves(const std::vector<TieScan>& ties) const override { return agent_.moves(ties); }
+    MapMoves map_moves(const std::string& peer, const std::vector<TieScan>& ties,
+                       std::size_t max_closures) const override {
+      return agent_.moves(peer, ties, max_closures);
+    }
     void follow(const std::string& peer, const MapMoves& moves) override { agent_.follow(peer, moves); }
 
    private:
@@ -157,13 +160,15 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
     if (progress && ++done % report_every == 0) progress(done, total);
   }
   // Every robot's last round, then the others' last word on where that left
-  // their maps, and a round more that follows it.
+  // their maps, the robots' turns after the logs end, and a round more that
+  // follows it.
   for (auto& a : agents_) {
     a->install_due(std::numeric_limits<double>::infinity(), true);
     a->finish(false);
   }
   for (auto& r : robots_) r->engine.announce_moves(end, true);
   pump(end);
+  final_exchanges(end);
   // The poses as loop closing last optimized them, like `run` writes.
   for (std::size_t i = 0; i < agents_.size(); ++i) {
     agents_[i]->finish();
@@ -172,6 +177,17 @@ void SwarmSession::run(const std::function<void(std::size_t, std::size_t)>& prog
       tracks_[i].steps[k].pose = optimized[k];
   }
   if (progress) progress(total, total);
+}
+
+// Turn by turn (swarm_config.hpp, final_exchanges): each robot's last round
+// sees where the robots before it just left their maps.
+void SwarmSession::final_exchanges(double end) {
+  for (int k = 0; k < config_.final_exchanges; ++k)
+    for (std::size_t i = 0; i < agents_.size(); ++i) {
+      agents_[i]->finish(false);
+      robots_[i]->engine.announce_moves(end, true);
+      pump(end);
+    }
 }
 
 void SwarmSession::pump(double now) {

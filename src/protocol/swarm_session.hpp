@@ -84,6 +84,7 @@ class SwarmSession {
   struct Robot;
   void encounter(const EncounterEvent& e, std::uint64_t id);
   void pump(double now);
+  void final_exchanges(double end);
 
   std::vector<AgentStream> streams_;
   std::vector<EncounterEvent> events_;

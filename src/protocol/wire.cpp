@@ -129,6 +129,12 @@ void put_body(ByteWriter& w, const Moved& m) {
     put(w, t.then);
     put(w, t.now);
   }
+  w.u32(static_cast<std::uint32_t>(m.moves.closures.size()));
+  for (const PeerClosure& c : m.moves.closures) {
+    w.i32(c.submap);
+    put(w, c.in_cells);
+    put(w, c.node);
+  }
 }
 
 // ---- decoding -------------------------------------------------------------
@@ -245,6 +251,15 @@ Body read_moved(BodyReader& b) {
     t.then = b.pose("encounter pose then");
     t.now = b.pose("encounter pose now");
     m.moves.ties.push_back(t);
+  }
+  if (b.raw().remaining() == 0) return m;  // from an agent before loop closures travelled (2026-12-07)
+  const std::uint32_t c = b.count("loop closures", b.limits().max_closures, 52);
+  for (std::uint32_t i = 0; i < c; ++i) {
+    PeerClosure closure;
+    closure.submap = b.raw().i32("closure submap id");
+    closure.in_cells = b.pose("closure pose in the submap");
+    closure.node = b.pose("closure node pose");
+    m.moves.closures.push_back(closure);
   }
   return m;
 }

@@ -45,6 +45,7 @@ struct WireLimits {
   std::size_t max_text = 1024;                // a decline's reason
   std::size_t max_pieces = 1 << 16;           // submap poses a Moved may carry
   std::size_t max_ties = 4096;                // encounter poses a Moved may carry
+  std::size_t max_closures = 8192;            // loop closures a Moved may carry
   std::uint32_t max_chunks = 1 << 16;         // per transfer
   std::uint64_t max_transfer_bytes = 1ull << 30;
 };

@@ -44,6 +44,7 @@ Moved sample_moved() {
   m.moves.revision = 17;
   m.moves.pieces = {{0, {0.0, 0.0, 0.0}}, {3, {12.5, -4.0, 1.25}}};
   m.moves.ties = {{7, {1.5, -2.0, 0.3}, {1.6, -2.1, 0.31}}};
+  m.moves.closures = {{4, {2.0, 1.0, 0.5}, {-3.0, 7.5, -1.0}}};
   return m;
 }
 
@@ -89,6 +90,37 @@ TEST(Wire, EveryKindRoundTrips) {
   ASSERT_EQ(m.pieces.size(), 2u);
   EXPECT_EQ(m.pieces[1].id, 3);
   EXPECT_DOUBLE_EQ(m.ties[0].now.theta, 0.31);
+  ASSERT_EQ(m.closures.size(), 1u);
+  EXPECT_EQ(m.closures[0].submap, 4);
+  EXPECT_DOUBLE_EQ(m.closures[0].in_cells.theta, 0.5);
+  EXPECT_DOUBLE_EQ(m.closures[0].node.y, 7.5);
+}
+
+// Cuts `n` bytes from the end of a message's body, and its body size to match.
+std::vector<std::uint8_t> without_body_tail(std::vector<std::uint8_t> bytes, std::size_t n) {
+  const auto u32_at = [&](std::size_t o) {
+    return static_cast<std::uint32_t>(bytes[o] | bytes[o + 1] << 8 | bytes[o + 2] << 16 | bytes[o + 3] << 24);
+  };
+  std::size_t at = 0;  // the body size: the only field saying how many bytes follow it (less the checksum)
+  while (at + 8 <= bytes.size() && u32_at(at) != bytes.size() - 4 - (at + 4)) ++at;
+  EXPECT_LT(at + 8, bytes.size());
+  const std::uint32_t shorter = u32_at(at) - static_cast<std::uint32_t>(n);
+  for (std::size_t i = 0; i < 4; ++i) bytes[at + i] = static_cast<std::uint8_t>(shorter >> (8 * i));
+  bytes.erase(bytes.end() - 4 - static_cast<std::ptrdiff_t>(n), bytes.end() - 4);
+  reseal(bytes);
+  return bytes;
+}
+
+// A Moved from an agent before loop closures travelled ends after its ties:
+// it is read as carrying none. Cut inside the closures, it is refused.
+TEST(Wire, AMovedWithoutClosuresIsReadAsHavingNone) {
+  Moved older = sample_moved();
+  older.moves.closures.clear();
+  const MapMoves m = std::get<Moved>(decode(without_body_tail(encode(with(older)), 4)).body).moves;
+  EXPECT_TRUE(m.closures.empty());
+  ASSERT_EQ(m.ties.size(), 1u);
+  EXPECT_DOUBLE_EQ(m.ties[0].now.theta, 0.31);
+  EXPECT_NE(error_of(without_body_tail(encode(with(sample_moved())), 8)).find("closure"), std::string::npos);
 }
 
 TEST(Wire, DamagedOrForeignBytesAreRefusedWithTheReason) {

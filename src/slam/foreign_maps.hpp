@@ -18,6 +18,7 @@
 
 #include "geometry/pose2.hpp"
 #include "grid/frozen_map.hpp"
+#include "slam/peer_closure.hpp"
 #include "slam/pose_graph.hpp"
 
 namespace dsswarm {

@@ -1,5 +1,6 @@
 #include "slam/loop_closer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -236,6 +237,7 @@ void LoopCloser::start_round() {
   in.graph.constraints = constraints_;
   in.graph.frames = foreign_.frame_poses();
   in.frame_tied = foreign_.tied();
+  add_peer_constraints(in);
   in.graph.fixed_submap = 0;
   in.foreign = foreign_.pieces();
   const std::size_t take = std::min(backlog_.size(), static_cast<std::size_t>(config_.foreign_backlog));
@@ -253,6 +255,46 @@ void LoopCloser::start_round() {
   const std::uint64_t seed = seed_;
   const std::uint64_t ticket = executor_->submit([job, config, weights, seed] { run_round(*job, config, weights, seed); });
   in_flight_.push_back({std::move(round), ticket});
+}
+
+void LoopCloser::add_peer_constraints(RoundInput& in) const {
+  for (const auto& [frame, closures] : peer_closures_) {
+    const int g = foreign_.graph_index(frame);
+    if (g < 0 || !in.frame_tied[static_cast<std::size_t>(g)]) continue;  // not placed by an encounter of ours
+    for (const PeerClosure& c : closures) {
+      // Submap ids are indices; one we never made (a confused peer) is left out.
+      if (c.submap < 0 || static_cast<std::size_t>(c.submap) >= submaps_.size()) continue;
+      const Pose2 relative = between(submaps_[static_cast<std::size_t>(c.submap)].anchor, c.in_cells);
+      in.graph.peer.push_back({c.submap, g, c.node, relative});
+    }
+  }
+}
+
+std::vector<PeerClosure> LoopCloser::closures_into(int frame, std::size_t max) const {
+  std::vector<PeerClosure> out;
+  const int g = foreign_.graph_index(frame);
+  if (g < 0) return out;
+  const std::vector<ForeignPieceInfo>& pieces = foreign_.pieces();
+  for (auto it = applied_.closures.rbegin(); it != applied_.closures.rend() && out.size() < max; ++it) {
+    const Constraint& c = *it;
+    if (c.kind != Constraint::Kind::foreign || c.submap != g || c.piece < 0) continue;
+    const ForeignPieceInfo& piece = pieces[static_cast<std::size_t>(c.piece)];
+    out.push_back({piece.piece.id, c.piece_pose.inverse() * c.relative, node_global(c.node)});
+  }
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
+void LoopCloser::set_peer_closures(int frame, std::vector<PeerClosure> closures) {
+  std::vector<PeerClosure>& held = peer_closures_[frame];
+  const auto same = [](const PeerClosure& a, const PeerClosure& b) {
+    return a.submap == b.submap && a.in_cells.x == b.in_cells.x && a.in_cells.y == b.in_cells.y &&
+           a.in_cells.theta == b.in_cells.theta && a.node.x == b.node.x && a.node.y == b.node.y &&
+           a.node.theta == b.node.theta;
+  };
+  if (std::equal(held.begin(), held.end(), closures.begin(), closures.end(), same)) return;
+  held = std::move(closures);
+  new_constraints_ = true;  // the next round optimizes with them
 }
 
 LoopClosure LoopCloser::record(const LoopCandidate& c) const {

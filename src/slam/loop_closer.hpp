@@ -98,6 +98,12 @@ class LoopCloser {
   // the tie follows, from the next round on. Repeating it changes nothing
   // more. Returns whether the tie moved (false for an encounter not tied here).
   bool move_encounter(int frame, std::uint64_t encounter, const Pose2& then, const Pose2& now);
+  // Our accepted closures into that robot's submaps, as it needs them to
+  // weigh them too (the most recent `max` of them).
+  std::vector<PeerClosure> closures_into(int frame, std::size_t max) const;
+  // That robot's closures into our submaps (the complete set it holds now):
+  // from the next round on, in our graph while its frame is tied to it.
+  void set_peer_closures(int frame, std::vector<PeerClosure> closures);
   // Where that robot's frame lies in ours now; nullopt if unknown.
   std::optional<Pose2> frame_pose(int frame) const;
   const ForeignMaps& foreign() const { return foreign_; }
@@ -147,6 +153,7 @@ class LoopCloser {
   void start_round();
   void queue_backlog();
   void apply_oldest();
+  void add_peer_constraints(RoundInput& in) const;
   LoopClosure record(const LoopCandidate& c) const;
   Pose2 node_global(int node) const;
 
@@ -170,6 +177,7 @@ class LoopCloser {
     Pose2 measured;          // its relative as the encounter measured it
   };
   std::map<std::pair<int, std::uint64_t>, Tie> ties_;  // (frame, encounter)
+  std::map<int, std::vector<PeerClosure>> peer_closures_;  // frame -> its closures into our submaps
   double travel_ = 0.0;
   std::optional<Pose2> last_scan_pose_;
   double last_search_travel_ = -1e9;

@@ -49,6 +49,20 @@ struct RelativePoseError {
   }
 };
 
+// The same with the node given in a frame: (submap⁻¹ ⊕ frame ⊕ node) ⊖ z.
+struct PeerPoseError {
+  Pose2 node;
+  Pose2 z;
+  double weight_xy, weight_theta;
+
+  template <typename T>
+  bool operator()(const T* submap, const T* frame, T* residual) const {
+    const T c = cos(frame[2]), s = sin(frame[2]);
+    const T to[3] = {frame[0] + c * node.x - s * node.y, frame[1] + s * node.x + c * node.y, frame[2] + T(node.theta)};
+    return RelativePoseError{z, weight_xy, weight_theta}(submap, to, residual);
+  }
+};
+
 using Block = std::array<double, 3>;
 
 std::pair<double, double> sigmas(Constraint::Kind kind, const PoseGraphConfig& config) {
@@ -121,6 +135,15 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
     problem.AddResidualBlock(cost, robust ? &huber : nullptr, reference, node);
     if (part == Part::frames) problem.SetParameterBlockConstant(node);
   }
+  if (part != Part::own)
+    for (const PeerConstraint& c : graph.peer) {
+      const auto i = static_cast<std::size_t>(c.submap), f = static_cast<std::size_t>(c.frame);
+      if (i >= submaps.size() || f >= frames.size()) continue;
+      auto* cost = new ceres::AutoDiffCostFunction<PeerPoseError, 3, 3, 3>(
+          new PeerPoseError{c.node, c.relative, 1.0 / config.foreign_sigma_xy, 1.0 / config.foreign_sigma_theta});
+      problem.AddResidualBlock(cost, &huber, submaps[i].data(), frames[f].data());
+      if (part == Part::frames) problem.SetParameterBlockConstant(submaps[i].data());
+    }
   if (problem.NumResidualBlocks() == 0) return summary;
   // One submap held fixed anchors the global frame.
   if (graph.fixed_submap >= 0 && static_cast<std::size_t>(graph.fixed_submap) < submaps.size()) {
@@ -149,7 +172,8 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
 
 OptimizationSummary optimize(PoseGraph& graph, const PoseGraphConfig& config) {
   if (graph.nodes.empty()) return {};
-  const bool foreign = std::any_of(graph.constraints.begin(), graph.constraints.end(),
+  const bool foreign = !graph.peer.empty() ||
+                       std::any_of(graph.constraints.begin(), graph.constraints.end(),
                                    [](const Constraint& c) { return c.kind == Constraint::Kind::foreign; });
   if (config.foreign_moves_own || !foreign) return solve(graph, config, Part::all);
   OptimizationSummary own = solve(graph, config, Part::own);

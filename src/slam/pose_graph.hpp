@@ -9,6 +9,8 @@
 //   * foreign: the node placed in another robot's map frame (a frame of
 //     `frames`: where that robot's map lies in ours) — by an encounter with
 //     it, or a loop closure into one of its submaps — under the same loss,
+//   * peer: that robot's own closure into one of our submaps (`peer`): its
+//     node, held where that robot last put it in its frame, in our submap,
 //
 // and optimized by Ceres (one thread). No constraint joins two nodes, so
 // Ceres eliminates the nodes first (Schur complement) and factorizes only
@@ -63,11 +65,22 @@ struct Constraint {
   Pose2 piece_pose{};
 };
 
+// Another robot's loop closure into one of our submaps: its node, at `node`
+// in its own map frame (frames[frame]), measured at `relative` in our
+// submap's frame. Weighed like a foreign constraint, under the same loss.
+struct PeerConstraint {
+  int submap = 0;
+  int frame = 0;
+  Pose2 node;
+  Pose2 relative;
+};
+
 struct PoseGraph {
   std::vector<Pose2> nodes;    // global poses of the trajectory nodes
   std::vector<Pose2> submaps;  // global poses of the submaps' anchors
   std::vector<Pose2> frames;   // global poses of other robots' map frames
   std::vector<Constraint> constraints;
+  std::vector<PeerConstraint> peer;
   int fixed_submap = 0;        // held constant: it anchors the global frame
 };
 

@@ -120,6 +120,50 @@ TEST(PoseGraph, ForeignConstraintsMoveOurNodesOnlyWhenAllowed) {
   EXPECT_LT(rigid.frames[0].x, 1.3);
 }
 
+// Another robot's closure into our submap places its frame as ours into its
+// submaps would: its node, where it holds it in its frame, at the measured
+// pose in our submap.
+TEST(PoseGraph, APeerClosurePlacesTheOtherRobotsFrame) {
+  PoseGraph g;
+  g.submaps = {Pose2(0, 0, 0)};
+  g.nodes = {Pose2(1, 0, 0)};
+  g.constraints.push_back({Constraint::Kind::local, 0, 0, Pose2(1, 0, 0)});
+  g.frames = {Pose2(0, 0, 0)};  // a guess
+  const Pose2 node(2, 1, 0.5), measured(4, -1, 1.0);
+  g.peer.push_back({0, 0, node, measured});
+  ASSERT_TRUE(optimize(g, PoseGraphConfig{}).usable);
+  const Pose2 want = measured * node.inverse();
+  EXPECT_NEAR(g.frames[0].x, want.x, 1e-6);
+  EXPECT_NEAR(g.frames[0].y, want.y, 1e-6);
+  EXPECT_NEAR(normalize_angle(g.frames[0].theta - want.theta), 0.0, 1e-6);
+}
+
+// Peer closures that disagree with our own graph move our submaps only when
+// foreign constraints may (graph.foreign_moves_own).
+TEST(PoseGraph, PeerClosuresMoveOurSubmapsOnlyWhenAllowed) {
+  PoseGraph base;
+  base.submaps = {Pose2(0, 0, 0), Pose2(2, 0, 0)};
+  base.nodes = {Pose2(1, 0, 0), Pose2(3, 0, 0)};
+  base.constraints = {{Constraint::Kind::local, 0, 0, Pose2(1, 0, 0)},
+                      {Constraint::Kind::local, 1, 1, Pose2(1, 0, 0)},
+                      {Constraint::Kind::local, 0, 1, Pose2(3, 0, 0)}};
+  base.frames = {Pose2(0, 0, 0)};
+  // The frame 0.5 m along x by submap 0; by submap 1, 0.3 m off to the side.
+  base.peer = {{0, 0, Pose2(0, 0, 0), Pose2(0.5, 0, 0)}, {1, 0, Pose2(1, 0, 0), Pose2(0, 0.3, 0)}};
+  PoseGraphConfig config;
+  config.foreign_moves_own = false;
+  PoseGraph rigid = base;
+  ASSERT_TRUE(optimize(rigid, config).usable);
+  EXPECT_NEAR(rigid.submaps[1].x, 2.0, 1e-9);
+  EXPECT_NEAR(rigid.submaps[1].y, 0.0, 1e-9);
+  EXPECT_GT(rigid.frames[0].x, 0.5);  // placed between what the two closures say
+  EXPECT_LT(rigid.frames[0].x, 1.0);
+  config.foreign_moves_own = true;
+  PoseGraph coupled = base;
+  ASSERT_TRUE(optimize(coupled, config).usable);
+  EXPECT_LT(coupled.submaps[1].y, -0.01);  // bent towards the other robot's map
+}
+
 TEST(PoseGraph, ConstraintErrorIsZeroWhereTheMeasurementHolds) {
   PoseGraph g;
   g.nodes = {Pose2(1, 2, 0.3), Pose2(2, 2.5, 0.6)};

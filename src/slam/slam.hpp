@@ -185,6 +185,10 @@ class Slam {
   bool move_encounter(int frame, std::uint64_t encounter, const Pose2& then, const Pose2& now) {
     return closer_.move_encounter(frame, encounter, then, now);
   }
+  // That robot's own closures into our submaps (LoopCloser::set_peer_closures).
+  void set_peer_closures(int frame, std::vector<PeerClosure> closures) {
+    closer_.set_peer_closures(frame, std::move(closures));
+  }
   // Scan `index`'s best global pose now (process() order), and a number that
   // grows whenever loop closing moves the trajectory and submaps.
   Pose2 scan_pose(std::size_t index) const { return closer_.scan_pose(index); }

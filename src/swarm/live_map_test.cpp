@@ -78,7 +78,7 @@ TEST(LiveMap, HoldsTheOtherRobotsLayerWhereItLiesNow) {
 
   for (std::size_t i = rb.log.scans.size() / 3; i < rb.log.scans.size(); ++i) b.process(rb.log.scans[i]);
   b.finish();  // closes its loop: its submaps move
-  ASSERT_TRUE(a.follow("b", b.moves({})));
+  ASSERT_TRUE(a.follow("b", b.moves("a", {}, 4096)));
   const MultiResMap after = live.compose(*a.live_map_parts());
   EXPECT_EQ(live.base_compositions(), 2u);
   EXPECT_LE(live_apart(after, expected()), kRounding);

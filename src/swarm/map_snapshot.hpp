@@ -16,6 +16,7 @@
 #include "geometry/pose2.hpp"
 #include "grid/frozen_map.hpp"
 #include "grid/multires_map.hpp"
+#include "slam/peer_closure.hpp"
 
 namespace dsswarm {
 
@@ -72,6 +73,10 @@ struct MapMoves {
   std::uint64_t revision = 0;  // the robot's graph revision: a higher one supersedes
   std::vector<PiecePose> pieces;
   std::vector<TieMove> ties;   // its encounters with the holder
+  // Its loop closures into the holder's map (slam/foreign_maps.hpp): the
+  // holder weighs them in its own graph too, so the two robots' graphs rest
+  // on the same constraints between their maps.
+  std::vector<PeerClosure> closures;
 };
 
 // What a robot sends at an encounter (and what a .dsmap file holds): layers[0]

@@ -83,9 +83,12 @@ void SwarmAgent::tie(const std::string& peer, std::size_t scan_index, const Pose
   slam_.add_encounter(frame_id(peer), scan_index, scan_pose, peer_in_self, encounter);
 }
 
-MapMoves SwarmAgent::moves(const std::vector<TieScan>& ties) const {
+MapMoves SwarmAgent::moves(const std::string& peer, const std::vector<TieScan>& ties,
+                           std::size_t max_closures) const {
   MapMoves m;
   if (!loop_closing()) return m;
+  if (const auto it = frame_ids_.find(peer); it != frame_ids_.end())
+    m.closures = slam_.loop_closer().closures_into(it->second, max_closures);
   m.revision = graph_revision();
   for (const MapPiece& p : slam_.finished_pieces()) m.pieces.push_back({p.id, p.pose});
   for (const TieScan& t : ties)
@@ -98,8 +101,10 @@ bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
   if (!loop_closing()) return false;
   bool moved = knowledge_.move_pieces(origin, moves.pieces);
   if (moved) register_layers();
-  if (const auto it = frame_ids_.find(origin); it != frame_ids_.end())
+  if (const auto it = frame_ids_.find(origin); it != frame_ids_.end()) {
     for (const TieMove& t : moves.ties) moved = slam_.move_encounter(it->second, t.encounter, t.then, t.now) || moved;
+    slam_.set_peer_closures(it->second, moves.closures);
+  }
   return moved;
 }
 

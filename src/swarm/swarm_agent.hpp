@@ -67,14 +67,15 @@ class SwarmAgent {
   void tie(const std::string& peer, std::size_t scan_index, const Pose2& scan_pose, const Pose2& peer_in_self,
            std::uint64_t encounter = 0);
 
-  // Where this robot's map lies now, for a peer holding a copy (MapMoves):
-  // its finished submaps, and its scans at the encounters `ties`. Empty with
-  // loop closure off.
-  MapMoves moves(const std::vector<TieScan>& ties) const;
+  // Where this robot's map lies now, for `peer` holding a copy (MapMoves):
+  // its finished submaps, its scans at the encounters `ties`, and its latest
+  // `max_closures` loop closures into the peer's map. Empty with loop closure off.
+  MapMoves moves(const std::string& peer, const std::vector<TieScan>& ties, std::size_t max_closures) const;
   // Grows whenever loop closing moves this robot's map (moves() changes).
   std::uint64_t graph_revision() const { return slam_.graph_revision(); }
   // `origin` says its map moved: its pieces held here follow, and so do the
-  // ties of our encounters with it, from the next loop-closing round on.
+  // ties of our encounters with it, from the next loop-closing round on; its
+  // closures into our map join our graph.
   // The merged map shows it from the next composition on (a merge, finish()),
   // as it shows this robot's own closures. Returns whether anything moved.
   bool follow(const std::string& origin, const MapMoves& moves);

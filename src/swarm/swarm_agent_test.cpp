@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <memory>
 #include <numbers>
 
 #include "grid/test_cells.hpp"
@@ -116,6 +118,64 @@ TEST(SwarmAgent, WithLoopClosureAnEncounterIsAConstraintThatClosuresIntoTheOther
   EXPECT_EQ(test::largest_difference(want.finest(), a.slam().map().finest()), 0.0);
 }
 
+// A robot tells a peer its closures into the peer's map (MapMoves), each
+// where it lies in both maps; the peer weighs them in its own graph, and the
+// two robots' estimates of each other's frame agree.
+TEST(SwarmAgent, ClosuresIntoAPeersMapTravelAndThePeerWeighsThem) {
+  const SimulatedRun ra = test::lap(0, 1), rb = test::lap(2, 2);
+  const Pose2 start_a = ra.ground_truth.front().second;
+  const Pose2 b_in_a = between(start_a, rb.ground_truth.front().second);
+  const Pose2 seen = b_in_a * Pose2(0.1, -0.05, std::numbers::pi / 180.0);  // as an encounter found it
+  const auto run_b = [&] {
+    auto b = std::make_unique<SwarmAgent>("b", with_loop_closure());
+    for (const LaserScan& scan : rb.log.scans) b->process(scan);
+    b->finish();
+    return b;
+  };
+  std::unique_ptr<SwarmAgent> first_b = run_b();
+  const MapSnapshot from_b = first_b->snapshot();
+  SwarmAgent a("a", with_loop_closure());
+  constexpr std::size_t meet = 60;
+  for (std::size_t i = 0; i < ra.log.scans.size(); ++i) {
+    const SlamStep step = a.process(ra.log.scans[i]);
+    if (i != meet) continue;
+    a.tie("b", meet, step.pose, seen);
+    ASSERT_TRUE(a.merge(from_b, seen));
+  }
+  a.finish();
+  const MapMoves told = a.moves("b", {}, 4096);
+  ASSERT_GT(told.closures.size(), 10u);
+  const std::vector<LoopClosure>& held = a.slam().loop_closer().closures();
+  EXPECT_EQ(told.closures.size(),
+            static_cast<std::size_t>(std::count_if(held.begin(), held.end(), [](const LoopClosure& c) { return c.foreign; })));
+  EXPECT_EQ(a.moves("b", {}, 5).closures.size(), 5u);
+  EXPECT_TRUE(a.moves("c", {}, 4096).closures.empty());  // no map of c held
+  // Each lies where a's graph put it: a's node, at a's frame for b ⊕ b's piece ⊕ the pose in it.
+  const MapLayer& layer = *a.knowledge().find("b");
+  for (const PeerClosure& c : told.closures) {
+    const auto piece =
+        std::find_if(layer.pieces.begin(), layer.pieces.end(), [&](const MapPiece& p) { return p.id == c.submap; });
+    ASSERT_NE(piece, layer.pieces.end()) << c.submap;
+    const Pose2 there = layer.origin_in_holder * piece->pose * c.in_cells;
+    EXPECT_LT(std::hypot(there.x - c.node.x, there.y - c.node.y), 0.2);
+  }
+
+  // b, having met a the same way, weighs them: its estimate of a's frame
+  // comes to agree with a's of b's.
+  const MapSnapshot from_a = a.snapshot();
+  const auto disagreement = [&](bool weighs) {
+    const std::unique_ptr<SwarmAgent> b = weighs ? run_b() : std::move(first_b);
+    b->tie("a", 0, b->slam().scan_pose(0), seen.inverse());
+    EXPECT_TRUE(b->merge(from_a, seen.inverse()));
+    if (weighs) b->follow("a", told);
+    b->finish();
+    const Pose2 d = layer.origin_in_holder * b->knowledge().find("a")->origin_in_holder;
+    return std::hypot(d.x, d.y) + 10.0 * std::abs(normalize_angle(d.theta));
+  };
+  const double alone = disagreement(false), weighing = disagreement(true);
+  EXPECT_LT(weighing, 0.5 * alone) << "alone " << alone << ", weighing " << weighing;
+}
+
 // With loop closure on a robot localizes in its own submaps, so a peer's
 // scan is placed in its own map, not in own ⊕ the layers merged (one merged
 // a little off would pull the placement its way: docs/loop_closure.md), and
@@ -178,7 +238,7 @@ TEST(SwarmAgent, AMapThatLoopClosingMovedAfterTheMergeIsFollowed) {
   for (std::size_t i = b_meet + 1; i < rb.log.scans.size(); ++i) b.process(rb.log.scans[i]);
   b.finish();  // closes its loop
 
-  const MapMoves moves = b.moves({{kEncounter, b_meet, b_offered}});
+  const MapMoves moves = b.moves("a", {{kEncounter, b_meet, b_offered}}, 4096);
   EXPECT_EQ(moves.revision, b.graph_revision());
   ASSERT_EQ(moves.ties.size(), 1u);
   const Pose2 b_now = moves.ties[0].now;
@@ -205,7 +265,7 @@ TEST(SwarmAgent, AMapThatLoopClosingMovedAfterTheMergeIsFollowed) {
   EXPECT_NEAR(normalize_angle(after.theta - want.theta), 0.0, 1e-5);
 
   SwarmAgent plain("p", SlamConfig{});  // without loop closure nothing moves
-  EXPECT_TRUE(plain.moves({{kEncounter, 0, Pose2()}}).pieces.empty());
+  EXPECT_TRUE(plain.moves("b", {{kEncounter, 0, Pose2()}}, 4096).pieces.empty());
   EXPECT_FALSE(plain.follow("b", moves));
 }
 

@@ -30,6 +30,8 @@ void SwarmConfig::validate() const {
   if (!(moves_interval >= 0.0)) throw ConfigError("swarm.moves_interval must be >= 0 s");
   if (max_followed_encounters < 1 || max_followed_encounters > 4096)
     throw ConfigError("swarm.max_followed_encounters must be in [1, 4096]");
+  if (max_moved_closures > 8192) throw ConfigError("swarm.max_moved_closures must be in [0, 8192]");
+  if (final_exchanges < 0 || final_exchanges > 100) throw ConfigError("swarm.final_exchanges must be in [0, 100]");
   if (max_pending_confirmations < 1 || max_pending_confirmations > 64)
     throw ConfigError("swarm.max_pending_confirmations must be in [1, 64]");
 }

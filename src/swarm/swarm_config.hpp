@@ -85,6 +85,15 @@ struct SwarmConfig {
   // of their last `max_followed_encounters` encounters with it.
   double moves_interval = 5.0;  // s
   std::size_t max_followed_encounters = 32;
+  // With them go the robot's loop closures into the peer's map, the most
+  // recent this many (52 bytes each), for the peer's graph to weigh too.
+  std::size_t max_moved_closures = 4096;
+  // `dsswarm swarm` (robots in one process): after the logs end, rounds in
+  // which the robots take turns, each closing its loops on what the others
+  // last told it and telling them where that left its map. Turn by turn,
+  // not all at once: two robots each bending towards the other's last shape
+  // at the same moment would trade their shapes rather than agree.
+  int final_exchanges = 2;
 
   void validate() const;  // throws ConfigError naming the field
 };
