@@ -258,6 +258,7 @@ const std::map<std::string, std::map<std::string, Field>>& fields() {
         {"foreign_sigma_theta", DSS_FIELD(double, loop_closure.graph.foreign_sigma_theta)},
         {"loop_huber", DSS_FIELD(double, loop_closure.graph.loop_huber)},
         {"foreign_moves_own", DSS_FIELD(bool, loop_closure.graph.foreign_moves_own)},
+        {"peer_weight", DSS_FIELD(double, loop_closure.graph.peer_weight)},
         {"max_iterations", DSS_FIELD(int, loop_closure.graph.max_iterations)}}},
       {"encounter",
        {{"search_radius", DSS_SWARM_FIELD(double, encounter.locate.search_radius)},

@@ -19,6 +19,7 @@ void PoseGraphConfig::validate() const {
   if (!(foreign_sigma_xy > 0.0) || !(foreign_sigma_theta > 0.0))
     throw ConfigError("graph.foreign_sigma_xy and graph.foreign_sigma_theta must be > 0");
   if (!(loop_huber > 0.0)) throw ConfigError("graph.loop_huber must be > 0");
+  if (!(peer_weight >= 0.0 && peer_weight <= 10.0)) throw ConfigError("graph.peer_weight must be in [0, 10]");
   if (max_iterations < 1) throw ConfigError("graph.max_iterations must be >= 1");
 }
 
@@ -135,12 +136,12 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
     problem.AddResidualBlock(cost, robust ? &huber : nullptr, reference, node);
     if (part == Part::frames) problem.SetParameterBlockConstant(node);
   }
-  if (part != Part::own)
+  if (part != Part::own && config.peer_weight > 0.0)
     for (const PeerConstraint& c : graph.peer) {
       const auto i = static_cast<std::size_t>(c.submap), f = static_cast<std::size_t>(c.frame);
       if (i >= submaps.size() || f >= frames.size()) continue;
-      auto* cost = new ceres::AutoDiffCostFunction<PeerPoseError, 3, 3, 3>(
-          new PeerPoseError{c.node, c.relative, 1.0 / config.foreign_sigma_xy, 1.0 / config.foreign_sigma_theta});
+      auto* cost = new ceres::AutoDiffCostFunction<PeerPoseError, 3, 3, 3>(new PeerPoseError{
+          c.node, c.relative, config.peer_weight / config.foreign_sigma_xy, config.peer_weight / config.foreign_sigma_theta});
       problem.AddResidualBlock(cost, &huber, submaps[i].data(), frames[f].data());
       if (part == Part::frames) problem.SetParameterBlockConstant(submaps[i].data());
     }

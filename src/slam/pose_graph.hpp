@@ -36,6 +36,12 @@ struct PoseGraphConfig {
   // optimized by that robot, and an encounter rests on one scan.
   double foreign_sigma_xy = 0.05;    // m
   double foreign_sigma_theta = 0.01; // rad
+  // Another robot's closures into our map (`peer`) weigh less: each robot
+  // solves against the other's last shape while the other does the same,
+  // and at full weight the two can overshoot towards each other's old
+  // shapes. Their residuals (weighted as foreign ones) are scaled by this,
+  // their cost by its square (0.707: half).
+  double peer_weight = 0.707;
   // Huber loss on loop closures (and foreign ones), in units of their sigmas: beyond it an edge
   // pulls with constant force, so one wrong closure cannot drag the graph far
   // while a right one after a long drift still pulls the loop shut.

@@ -173,7 +173,7 @@ TEST(SwarmAgent, ClosuresIntoAPeersMapTravelAndThePeerWeighsThem) {
     return std::hypot(d.x, d.y) + 10.0 * std::abs(normalize_angle(d.theta));
   };
   const double alone = disagreement(false), weighing = disagreement(true);
-  EXPECT_LT(weighing, 0.5 * alone) << "alone " << alone << ", weighing " << weighing;
+  EXPECT_LT(weighing, 0.7 * alone) << "alone " << alone << ", weighing " << weighing;
 }
 
 // With loop closure on a robot localizes in its own submaps, so a peer's
