@@ -254,7 +254,8 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
   result.prior_score = fine_scorer.score(prior);
   std::vector<SearchStart> starts{coarse};
   if (two_starts) {
-    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25, result.prior_score - motion.penalty(prior)});
+    const double prior_score = result.prior_score - motion.penalty(prior);
+    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25, prior_score});
   } else if (levels > 1) {
     // Within half a cell of each other, yet on the fine level a wall that
     // lies along the grid makes the score steep: start from the better one,

@@ -140,8 +140,10 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
     for (const PeerConstraint& c : graph.peer) {
       const auto i = static_cast<std::size_t>(c.submap), f = static_cast<std::size_t>(c.frame);
       if (i >= submaps.size() || f >= frames.size()) continue;
-      auto* cost = new ceres::AutoDiffCostFunction<PeerPoseError, 3, 3, 3>(new PeerPoseError{
-          c.node, c.relative, config.peer_weight / config.foreign_sigma_xy, config.peer_weight / config.foreign_sigma_theta});
+      const double w_xy = config.peer_weight / config.foreign_sigma_xy;
+      const double w_theta = config.peer_weight / config.foreign_sigma_theta;
+      auto* cost = new ceres::AutoDiffCostFunction<PeerPoseError, 3, 3, 3>(
+          new PeerPoseError{c.node, c.relative, w_xy, w_theta});
       problem.AddResidualBlock(cost, &huber, submaps[i].data(), frames[f].data());
       if (part == Part::frames) problem.SetParameterBlockConstant(submaps[i].data());
     }

@@ -146,8 +146,8 @@ TEST(SwarmAgent, ClosuresIntoAPeersMapTravelAndThePeerWeighsThem) {
   const MapMoves told = a.moves("b", {}, 4096);
   ASSERT_GT(told.closures.size(), 10u);
   const std::vector<LoopClosure>& held = a.slam().loop_closer().closures();
-  EXPECT_EQ(told.closures.size(),
-            static_cast<std::size_t>(std::count_if(held.begin(), held.end(), [](const LoopClosure& c) { return c.foreign; })));
+  const auto foreign = std::count_if(held.begin(), held.end(), [](const LoopClosure& c) { return c.foreign; });
+  EXPECT_EQ(told.closures.size(), static_cast<std::size_t>(foreign));
   EXPECT_EQ(a.moves("b", {}, 5).closures.size(), 5u);
   EXPECT_TRUE(a.moves("c", {}, 4096).closures.empty());  // no map of c held
   // Each lies where a's graph put it: a's node, at a's frame for b ⊕ b's piece ⊕ the pose in it.
