@@ -20,9 +20,8 @@ constexpr Rgb kPastMap{185, 185, 185};  // the legend's mark for a path drawn pa
 std::size_t covered(const SwarmRunResult& s, std::size_t i) {
   const SwarmAgentResult& a = s.agents[i];
   if (i == 0 || a.map_versions.size() != a.trajectory.size()) return a.trajectory.size();
-  std::uint64_t version = 0;
-  for (const MapLayer& l : s.agents.front().knows)
-    if (l.origin == a.name) version = l.version;
+  const MapLayer* held = s.agents.front().held(a.name);
+  const std::uint64_t version = held ? held->version : 0;
   const auto past = std::upper_bound(a.map_versions.begin(), a.map_versions.end(), version);
   return static_cast<std::size_t>(past - a.map_versions.begin());
 }

@@ -28,9 +28,8 @@ nlohmann::json pose_json(const Pose2& p) { return nlohmann::json::array({p.x, p.
 // Pose of agent i's map frame in agent 0's frame, when agent 0 knows it.
 std::optional<Pose2> frame_in_reference(const SwarmRunResult& run, std::size_t i) {
   if (i == 0) return Pose2{};
-  for (const MapLayer& l : run.agents.front().knows)
-    if (l.origin == run.agents[i].name) return l.origin_in_holder;
-  return std::nullopt;
+  const MapLayer* l = run.agents.front().held(run.agents[i].name);
+  return l ? std::optional<Pose2>(l->origin_in_holder) : std::nullopt;
 }
 
 // Adds STEM.{yaml,pgm} (nothing for an empty map) and returns the raster.

@@ -26,6 +26,13 @@ struct SwarmAgentResult {
   std::shared_ptr<const MultiResMap> working_map;  // own ⊕ everything received
   std::vector<MapLayer> knows;  // what it holds of others (origin, version, hops, frame)
   nlohmann::json counters;      // scans matched, held, ... as stats.json reports them
+
+  // The layer of `origin`'s map it holds; null if none.
+  const MapLayer* held(const std::string& origin) const {
+    for (const MapLayer& l : knows)
+      if (l.origin == origin) return &l;
+    return nullptr;
+  }
 };
 
 struct SwarmRunResult {

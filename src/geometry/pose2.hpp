@@ -32,6 +32,7 @@ struct Pose2 {
   Eigen::Vector2d operator*(const Eigen::Vector2d& p) const;
 
   Eigen::Vector2d translation() const { return {x, y}; }
+  bool operator==(const Pose2&) const = default;  // exactly the same numbers
 };
 
 // A pose as a point transform with its cosine and sine computed once: the

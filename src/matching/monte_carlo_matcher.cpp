@@ -252,10 +252,10 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
                                          std::abs(d.theta) > config_.polish_step_theta);
   const ScanScorer fine_scorer(fine, *points.level.front(), 1, config_.unknown_value);
   result.prior_score = fine_scorer.score(prior);
+  const double prior_start_score = result.prior_score - motion.penalty(prior);  // as a search scores it
   std::vector<SearchStart> starts{coarse};
   if (two_starts) {
-    const double prior_score = result.prior_score - motion.penalty(prior);
-    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25, prior_score});
+    starts.push_back({prior, fine.resolution(), config_.sigma_theta * 0.25, prior_start_score});
   } else if (levels > 1) {
     // Within half a cell of each other, yet on the fine level a wall that
     // lies along the grid makes the score steep: start from the better one,
@@ -265,7 +265,7 @@ MatchResult MonteCarloMatcher::match_from(const MultiResMap& map, const LevelPoi
     const double coarse_score = fine_scorer.score(coarse.pose) - motion.penalty(coarse.pose);
     const bool from_prior = result.prior_score > coarse_score;
     if (from_prior) starts.front().pose = prior;
-    starts.front().fine_score = from_prior ? result.prior_score - motion.penalty(prior) : coarse_score;
+    starts.front().fine_score = from_prior ? prior_start_score : coarse_score;
   }
   result.pose = search_fine(fine_scorer, *points.level.front(), motion, starts, fine_budget, result.evaluations);
   result.score = fine_scorer.score(result.pose);  // without the penalty

@@ -287,12 +287,7 @@ std::vector<PeerClosure> LoopCloser::closures_into(int frame, std::size_t max) c
 
 void LoopCloser::set_peer_closures(int frame, std::vector<PeerClosure> closures) {
   std::vector<PeerClosure>& held = peer_closures_[frame];
-  const auto same = [](const PeerClosure& a, const PeerClosure& b) {
-    return a.submap == b.submap && a.in_cells.x == b.in_cells.x && a.in_cells.y == b.in_cells.y &&
-           a.in_cells.theta == b.in_cells.theta && a.node.x == b.node.x && a.node.y == b.node.y &&
-           a.node.theta == b.node.theta;
-  };
-  if (std::equal(held.begin(), held.end(), closures.begin(), closures.end(), same)) return;
+  if (held == closures) return;
   held = std::move(closures);
   new_constraints_ = true;  // the next round optimizes with them
 }

@@ -15,6 +15,7 @@ struct PeerClosure {
   std::int32_t submap = 0;  // MapPiece::id: the receiver's submap
   Pose2 in_cells;           // the node in that submap's cells
   Pose2 node;               // the node in the sender's frame
+  bool operator==(const PeerClosure&) const = default;
 };
 
 }  // namespace dsswarm

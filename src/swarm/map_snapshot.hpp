@@ -73,7 +73,7 @@ struct MapMoves {
   std::uint64_t revision = 0;  // the robot's graph revision: a higher one supersedes
   std::vector<PiecePose> pieces;
   std::vector<TieMove> ties;   // its encounters with the holder
-  // Its loop closures into the holder's map (slam/foreign_maps.hpp): the
+  // Its loop closures into the holder's map (slam/peer_closure.hpp): the
   // holder weighs them in its own graph too, so the two robots' graphs rest
   // on the same constraints between their maps.
   std::vector<PeerClosure> closures;
