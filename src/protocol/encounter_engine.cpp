@@ -236,6 +236,9 @@ void EncounterEngine::decide(Exchange& x, double now) {
   x.accepted = o.estimate.accepted;
   o.reason = o.estimate.reason;
   if (x.accepted && config_.confirm && o.confirmed_by.empty()) confirm(x);
+  // A merge settles what was pending: held before it, on maps that have
+  // moved since, a transform confirms no later encounter (docs/design.md).
+  if (x.accepted) peers_[x.peer].pending.clear();
   if (!x.accepted) {
     finish({x.peer, x.id}, EncounterOutcome::End::rejected, o.reason, now);
     return;

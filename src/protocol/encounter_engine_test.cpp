@@ -15,38 +15,6 @@ namespace {
 
 using namespace engine_test;
 
-struct Pair {
-  Pair(const SwarmConfig& config)
-      : a("a", kStartA, {3.0, 2.0, 0.1}, 1),
-        b("b", kStartB, {5.0, 2.5, 2.9}, 2),
-        ea("a", config, a),
-        eb("b", config, b),
-        ga("a"),
-        gb("b") {}
-  // Delivers everything in flight, `keep(bytes)` deciding what arrives.
-  void pump(double now, const std::function<bool(const Outgoing&)>& keep = {}) {
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (auto [from, to, gate] : {std::tuple{&ea, &eb, &gb}, std::tuple{&eb, &ea, &ga}})
-        for (const Outgoing& out : from->take_outbox()) {
-          moved = true;
-          if (keep && !keep(out)) continue;
-          if (auto v = gate->admit(out.bytes); v.message) to->receive(*v.message, out.bytes.size(), now);
-        }
-    }
-  }
-  // Both robots told they are near (encounter `id` at `now`), everything
-  // delivered; what each decided, A's first.
-  std::pair<std::vector<EncounterOutcome>, std::vector<EncounterOutcome>> meet(std::uint64_t id, double now) {
-    ea.start("b", id, now);
-    eb.start("a", id, now);
-    pump(now);
-    return {ea.take_outcomes(), eb.take_outcomes()};
-  }
-  FakeRobot a, b;
-  EncounterEngine ea, eb;
-  MessageGate ga, gb;
-};
 
 using End = EncounterOutcome::End;
 
@@ -214,6 +182,35 @@ TEST(EncounterEngine, ASecondEncounterWhoseDirectionsDisagreeButEachAgreesConfir
     EXPECT_TRUE(same(p.a.last_transform, first[0].estimate.b_frame_in_a));
     EXPECT_TRUE(same(p.b.last_transform, first[0].estimate.b_frame_in_a.inverse()));
   }
+}
+
+// What was pending is settled once the pair merges: a later encounter whose
+// directions disagree is not merged on a transform held before that merge
+// (the maps have moved since; simulated seed 11 merged 0.054 m off so).
+TEST(EncounterEngine, AMergeSettlesWhatWasPending) {
+  Pair p(SwarmConfig{});
+  const auto first = p.meet(1, 0.0).first;
+  ASSERT_EQ(first.size(), 1u);
+  ASSERT_NE(first[0].reason.find("unconfirmed: "), std::string::npos) << first[0].reason;
+  p.b.version = 12;
+  const auto second = p.meet(2, 1.0).first;
+  ASSERT_EQ(second.size(), 1u);
+  ASSERT_EQ(second[0].end, End::accepted) << second[0].reason;
+  EXPECT_EQ(second[0].confirmed_by, "earlier encounter");
+  ASSERT_EQ(p.a.merges, 1);
+  // B reports its pose 12 cm off: each direction lies near the first
+  // encounter's transform, and the two disagree.
+  p.b.view.pose = p.b.view.pose * Pose2(0.12, 0.0, 0.0);
+  p.b.version = 13;
+  const auto [third_a, third_b] = p.meet(3, 30.0);
+  ASSERT_EQ(third_a.size(), 1u);
+  ASSERT_EQ(third_b.size(), 1u);
+  EXPECT_GT(third_a[0].estimate.disagreement_xy, SwarmConfig{}.encounter.agree_xy);
+  EXPECT_EQ(third_a[0].end, End::rejected) << third_a[0].confirmed_by;
+  EXPECT_EQ(third_b[0].end, End::rejected) << third_b[0].confirmed_by;
+  EXPECT_NE(third_a[0].reason.find("held until a second encounter agrees"), std::string::npos) << third_a[0].reason;
+  EXPECT_EQ(p.a.merges, 1);
+  EXPECT_EQ(p.b.merges, 1);
 }
 
 // The other order, with loop closure on: the encounter whose directions

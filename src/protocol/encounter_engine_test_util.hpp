@@ -2,13 +2,16 @@
 // What the encounter engine's tests share (encounter_engine_test.cpp,
 // encounter_order_test.cpp): a fake robot in the L-shaped office.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "protocol/encounter_engine.hpp"
+#include "protocol/gate.hpp"
 #include "swarm/map_knowledge.hpp"
 #include "swarm/test_scenes.hpp"
 
@@ -76,6 +79,40 @@ class FakeRobot : public AgentPort {
 inline bool same(const Pose2& p, const Pose2& q) { return p.x == q.x && p.y == q.y && p.theta == q.theta; }
 
 inline const Pose2 kStartA{1.5, 1.5, 0.4}, kStartB{8.5, 2.0, -2.5};
+
+// Two robots' engines, a and b, talking through their gates.
+struct Pair {
+  Pair(const SwarmConfig& config)
+      : a("a", kStartA, {3.0, 2.0, 0.1}, 1),
+        b("b", kStartB, {5.0, 2.5, 2.9}, 2),
+        ea("a", config, a),
+        eb("b", config, b),
+        ga("a"),
+        gb("b") {}
+  // Delivers everything in flight, `keep(bytes)` deciding what arrives.
+  void pump(double now, const std::function<bool(const Outgoing&)>& keep = {}) {
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (auto [from, to, gate] : {std::tuple{&ea, &eb, &gb}, std::tuple{&eb, &ea, &ga}})
+        for (const Outgoing& out : from->take_outbox()) {
+          moved = true;
+          if (keep && !keep(out)) continue;
+          if (auto v = gate->admit(out.bytes); v.message) to->receive(*v.message, out.bytes.size(), now);
+        }
+    }
+  }
+  // Both robots told they are near (encounter `id` at `now`), everything
+  // delivered; what each decided, A's first.
+  std::pair<std::vector<EncounterOutcome>, std::vector<EncounterOutcome>> meet(std::uint64_t id, double now) {
+    ea.start("b", id, now);
+    eb.start("a", id, now);
+    pump(now);
+    return {ea.take_outcomes(), eb.take_outcomes()};
+  }
+  FakeRobot a, b;
+  EncounterEngine ea, eb;
+  MessageGate ga, gb;
+};
 
 inline SwarmConfig unconfirmed() {
   SwarmConfig c;
