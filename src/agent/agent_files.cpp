@@ -33,6 +33,7 @@ nlohmann::json agent_stats(const SwarmAgent& a, const Trajectory& trajectory, co
   j["scans_skipped"] = s.scans_skipped;
   j["scans_in_checkpoint"] = r.scans_in_checkpoint;
   for (const auto& [name, count] : a.slam().scan_counters()) j[name] = count;
+  for (const auto& [name, count] : a.loop_counters()) j[name] = count;
   j["wall_seconds"] = r.wall_seconds;
   j["cpu_seconds"] = r.cpu_seconds;
   j["largest_scan_gap_ms"] = r.largest_gap_ms;

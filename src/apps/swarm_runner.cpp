@@ -220,8 +220,7 @@ SwarmRunResult run_result(const SwarmSession& s) {
     r.working_map = shared(a.slam().map());
     r.knows = a.knowledge().layers();
     for (const auto& [name, count] : a.slam().scan_counters()) r.counters[name] = count;
-    r.counters["loop_closures"] = a.slam().loop_closer().stats().accepted;
-    r.counters["loop_closures_into_others_maps"] = a.slam().loop_closer().stats().foreign_accepted;
+    for (const auto& [name, count] : a.loop_counters()) r.counters[name] = count;
     run.agents.push_back(std::move(r));
   }
   return run;

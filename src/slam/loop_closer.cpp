@@ -292,6 +292,12 @@ void LoopCloser::set_peer_closures(int frame, std::vector<PeerClosure> closures)
   new_constraints_ = true;  // the next round optimizes with them
 }
 
+std::size_t LoopCloser::peer_closures() const {
+  std::size_t n = 0;
+  for (const auto& [frame, closures] : peer_closures_) n += closures.size();
+  return n;
+}
+
 LoopClosure LoopCloser::record(const LoopCandidate& c) const {
   const std::size_t scan = nodes_[static_cast<std::size_t>(c.node)].scan;
   if (c.foreign)

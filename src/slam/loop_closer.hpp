@@ -104,6 +104,8 @@ class LoopCloser {
   // That robot's closures into our submaps (the complete set it holds now):
   // from the next round on, in our graph while its frame is tied to it.
   void set_peer_closures(int frame, std::vector<PeerClosure> closures);
+  // Those closures, over every robot, as last told.
+  std::size_t peer_closures() const;
   // Where that robot's frame lies in ours now; nullopt if unknown.
   std::optional<Pose2> frame_pose(int frame) const;
   const ForeignMaps& foreign() const { return foreign_; }

@@ -97,6 +97,13 @@ MapMoves SwarmAgent::moves(const std::string& peer, const std::vector<TieScan>& 
   return m;
 }
 
+std::vector<std::pair<const char*, std::size_t>> SwarmAgent::loop_counters() const {
+  const LoopCloser& closer = slam_.loop_closer();
+  return {{"loop_closures", closer.stats().accepted},
+          {"loop_closures_into_others_maps", closer.stats().foreign_accepted},
+          {"closures_from_others", closer.peer_closures()}};
+}
+
 bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
   if (!loop_closing()) return false;
   bool moved = knowledge_.move_pieces(origin, moves.pieces);

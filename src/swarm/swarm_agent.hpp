@@ -9,6 +9,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "slam/slam.hpp"
 #include "swarm/encounter.hpp"
@@ -132,6 +134,9 @@ class SwarmAgent {
   std::size_t own_version() const { return version_base_ + slam_.scans_inserted(); }
   const std::string& name() const { return name_; }
   const Slam& slam() const { return slam_; }
+  // Loop closure's counts for a robot's stats: its closures (into other
+  // robots' maps among them) and the other robots' closures into its map.
+  std::vector<std::pair<const char*, std::size_t>> loop_counters() const;
   const MapKnowledge& knowledge() const { return knowledge_; }
 
  private:

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <memory>
 #include <numbers>
+#include <string_view>
 
 #include "grid/test_cells.hpp"
 #include "sim/test_laps.hpp"
@@ -169,6 +170,12 @@ TEST(SwarmAgent, ClosuresIntoAPeersMapTravelAndThePeerWeighsThem) {
     EXPECT_TRUE(b->merge(from_a, seen.inverse()));
     if (weighs) b->follow("a", told);
     b->finish();
+    const auto counters = b->loop_counters();
+    const auto from_others = std::find_if(counters.begin(), counters.end(), [](const auto& c) {
+      return std::string_view(c.first) == "closures_from_others";
+    });
+    EXPECT_EQ(from_others == counters.end() ? ~std::size_t{0} : from_others->second,
+              weighs ? told.closures.size() : 0u);
     const Pose2 d = layer.origin_in_holder * b->knowledge().find("a")->origin_in_holder;
     return std::hypot(d.x, d.y) + 10.0 * std::abs(normalize_angle(d.theta));
   };
