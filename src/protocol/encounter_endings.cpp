@@ -73,6 +73,7 @@ void EncounterEngine::finish(const Key& key, EncounterOutcome::End end, std::str
 }
 
 void EncounterEngine::drop_peer(const std::string& peer, const std::string& why, double now) {
+  followers_.untold(peer);
   std::vector<Key> keys;
   for (const auto& [key, w] : waiting_)
     if (key.first == peer) keys.push_back(key);

@@ -90,6 +90,13 @@ TEST(EncounterEngine, APeerThatMergedHearsWhereLoopClosingMovedTheMapAndNoOneEls
   ASSERT_EQ(p.b.followed.size(), 2u);
   EXPECT_EQ(p.b.followed[1].second.revision, 4u);
   EXPECT_TRUE(p.a.followed.empty());  // b's map never moved
+  // b restarts (its checkpoint keeps a's layer, not the closures that came
+  // with it): a tells it again, though a's map has not moved.
+  p.ea.drop_peer("b", "b restarted", 31.0);
+  p.ea.tick(31.0);
+  const std::vector<Outgoing> again = p.ea.take_outbox();
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].recipient, "b");
 }
 
 TEST(EncounterEngine, TheOutcomeDoesNotDependOnWhoHearsOfTheEncounterFirst) {

@@ -31,6 +31,11 @@ void Followers::told(const std::string& peer, std::uint64_t revision, double now
   f.ever_told = true;
 }
 
+void Followers::untold(const std::string& peer) {
+  const auto it = followers_.find(peer);
+  if (it != followers_.end()) it->second.ever_told = false;
+}
+
 bool Followers::newer(const std::string& sender, std::uint64_t incarnation, std::uint64_t revision) {
   const auto it = heard_.find(sender);
   if (it != heard_.end() && (incarnation < it->second.first ||

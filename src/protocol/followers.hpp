@@ -31,6 +31,10 @@ class Followers {
   std::vector<std::string> due(std::uint64_t revision, double now, bool force) const;
   const std::vector<TieScan>& ties(const std::string& peer) const;
   void told(const std::string& peer, std::uint64_t revision, double now);
+  // `peer` restarted or went silent: what it was told may be lost (a
+  // restarted robot keeps its layers but not the closures that came with
+  // them), so it is due word again at once, whether or not the map moved.
+  void untold(const std::string& peer);
 
   // Whether a Moved from `sender` (its run `incarnation`, `revision`) is
   // newer than any taken from it; notes it if so.

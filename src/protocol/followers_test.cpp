@@ -21,6 +21,17 @@ TEST(Followers, OnlyPeersThatMergedAreToldAndOnlyOfANewerRevision) {
   EXPECT_TRUE(f.ties("robot3").empty());
 }
 
+TEST(Followers, APeerThatRestartedIsToldAgainAtOnce) {
+  Followers f(5.0, 8);
+  f.add("robot2", {7, 40, Pose2{}});
+  f.told("robot2", 3, 0.0);
+  EXPECT_TRUE(f.due(3, 100.0, false).empty());
+  f.untold("robot2");
+  EXPECT_EQ(f.due(3, 0.5, false), std::vector<std::string>{"robot2"});  // the same revision, moments later
+  f.untold("robot3");  // never a follower: nothing to tell it
+  EXPECT_EQ(f.due(3, 0.5, false), std::vector<std::string>{"robot2"});
+}
+
 TEST(Followers, KeepsTheLatestEncountersPerPeer) {
   Followers f(1.0, 2);
   for (std::uint64_t e = 1; e <= 5; ++e) f.add("robot2", {e, e, Pose2{}});
