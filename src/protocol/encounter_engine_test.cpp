@@ -15,7 +15,6 @@ namespace {
 
 using namespace engine_test;
 
-
 using End = EncounterOutcome::End;
 
 TEST(EncounterEngine, BothRobotsAcceptTheSameTransformAndMergeWhatTheOtherLacks) {
