@@ -32,7 +32,8 @@ struct Pose2 {
   Eigen::Vector2d operator*(const Eigen::Vector2d& p) const;
 
   Eigen::Vector2d translation() const { return {x, y}; }
-  bool operator==(const Pose2&) const = default;  // exactly the same numbers
+  // Bit for bit the same pose (whether something moved at all, not whether it moved much).
+  bool operator==(const Pose2&) const = default;
 };
 
 // A pose as a point transform with its cosine and sine computed once: the
@@ -64,8 +65,6 @@ inline Pose2 between(const Pose2& a, const Pose2& b) { return a.inverse() * b; }
 
 // Exactly the identity (a frame never moved), not merely close to it.
 inline bool is_identity(const Pose2& p) { return p.x == 0.0 && p.y == 0.0 && p.theta == 0.0; }
-// Bit for bit the same pose (whether something moved at all, not whether it moved much).
-inline bool same_pose(const Pose2& a, const Pose2& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
 
 // Linear interpolation of translation, shortest-arc interpolation of heading; t in [0, 1].
 inline Pose2 interpolate(const Pose2& a, const Pose2& b, double t) {

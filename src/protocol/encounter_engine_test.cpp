@@ -28,14 +28,14 @@ TEST(EncounterEngine, BothRobotsAcceptTheSameTransformAndMergeWhatTheOtherLacks)
   ASSERT_EQ(oa[0].end, End::accepted) << oa[0].reason;
   ASSERT_EQ(ob[0].end, End::accepted) << ob[0].reason;
   const Pose2 t = oa[0].estimate.b_frame_in_a;
-  EXPECT_TRUE(same(t, ob[0].estimate.b_frame_in_a));  // one decision, computed twice
+  EXPECT_TRUE(t == ob[0].estimate.b_frame_in_a);  // one decision, computed twice
   const Pose2 truth = kStartA.inverse() * kStartB;
   EXPECT_NEAR(t.x, truth.x, 0.05);
   EXPECT_NEAR(t.y, truth.y, 0.05);
   EXPECT_NEAR(normalize_angle(t.theta - truth.theta), 0.0, 0.01);
   EXPECT_EQ(p.a.merges, 1);
   EXPECT_EQ(p.b.merges, 1);
-  EXPECT_TRUE(same(p.b.last_transform, t.inverse()));
+  EXPECT_TRUE(p.b.last_transform == t.inverse());
   EXPECT_EQ(oa[0].bytes_sent, ob[0].bytes_received);
   EXPECT_EQ(oa[0].bytes_received, ob[0].bytes_sent);
   EXPECT_EQ(oa[0].layers_received, 1u);
@@ -76,7 +76,7 @@ TEST(EncounterEngine, APeerThatMergedHearsWhereLoopClosingMovedTheMapAndNoOneEls
   EXPECT_EQ(m.revision, 3u);
   ASSERT_EQ(m.ties.size(), 1u);
   EXPECT_EQ(m.ties[0].encounter, 1u);
-  EXPECT_TRUE(same(m.ties[0].then, p.a.view.pose));  // a's scan as it offered it
+  EXPECT_TRUE(m.ties[0].then == p.a.view.pose);  // a's scan as it offered it
   p.a.revision = 4;
   p.ea.tick(3.0);  // moved, but b heard too recently (the interval is 5 s)
   p.pump(3.0);
@@ -109,8 +109,8 @@ TEST(EncounterEngine, TheOutcomeDoesNotDependOnWhoHearsOfTheEncounterFirst) {
   ASSERT_EQ(x.size(), 1u);
   ASSERT_EQ(y.size(), 1u);
   EXPECT_EQ(x[0].end, y[0].end);
-  EXPECT_TRUE(same(x[0].estimate.b_frame_in_a, y[0].estimate.b_frame_in_a));
-  EXPECT_TRUE(same(x[0].estimate.a_locates_b.best.pose, y[0].estimate.a_locates_b.best.pose));
+  EXPECT_TRUE(x[0].estimate.b_frame_in_a == y[0].estimate.b_frame_in_a);
+  EXPECT_TRUE(x[0].estimate.a_locates_b.best.pose == y[0].estimate.a_locates_b.best.pose);
 }
 
 TEST(EncounterEngine, AFirstVerifiedEstimateWaitsForASecondThatAgrees) {
@@ -185,8 +185,8 @@ TEST(EncounterEngine, ASecondEncounterWhoseDirectionsDisagreeButEachAgreesConfir
     // Merged on the first, verified transform, by both robots.
     EXPECT_EQ(p.a.merges, 1);
     EXPECT_EQ(p.b.merges, 1);
-    EXPECT_TRUE(same(p.a.last_transform, first[0].estimate.b_frame_in_a));
-    EXPECT_TRUE(same(p.b.last_transform, first[0].estimate.b_frame_in_a.inverse()));
+    EXPECT_TRUE(p.a.last_transform == first[0].estimate.b_frame_in_a);
+    EXPECT_TRUE(p.b.last_transform == first[0].estimate.b_frame_in_a.inverse());
   }
 }
 

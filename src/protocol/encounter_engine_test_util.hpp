@@ -76,8 +76,6 @@ class FakeRobot : public AgentPort {
   std::vector<std::pair<std::uint64_t, int>> captured;  // (encounter, merges by then) per view taken
 };
 
-inline bool same(const Pose2& p, const Pose2& q) { return p.x == q.x && p.y == q.y && p.theta == q.theta; }
-
 inline const Pose2 kStartA{1.5, 1.5, 0.4}, kStartB{8.5, 2.0, -2.5};
 
 // Two robots' engines, a and b, talking through their gates.

@@ -26,7 +26,7 @@ void measure(const FrozenMap& map, const MapConfig& config, ForeignPieceInfo& in
 void follow_piece(int piece, Pose2& then, Pose2& relative, const std::vector<ForeignPieceInfo>& pieces) {
   if (piece < 0 || static_cast<std::size_t>(piece) >= pieces.size()) return;
   const Pose2& now = pieces[static_cast<std::size_t>(piece)].piece.pose;
-  if (same_pose(now, then)) return;
+  if (now == then) return;
   relative = now * then.inverse() * relative;
   then = now;
 }

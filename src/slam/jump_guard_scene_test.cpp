@@ -22,7 +22,7 @@ HeldRun run_with(const JumpConfig& jump, const SimulatedRun& run, std::size_t sc
   HeldRun r;
   for (std::size_t i = 0; i < scans; ++i) {
     const SlamStep step = slam.process(run.log.scans[i]);
-    if (step.matched && same_pose(step.pose, step.prior)) ++r.at_prediction;
+    if (step.matched && step.pose == step.prior) ++r.at_prediction;
   }
   r.holds = slam.scans_jump_held();
   return r;

@@ -137,7 +137,7 @@ bool LoopCloser::move_encounter(int frame, std::uint64_t encounter, const Pose2&
   // the scan moves, the node goes with it.
   Pose2& relative = constraints_[it->second.constraint].relative;
   const Pose2 moved = now * then.inverse() * it->second.measured;
-  if (same_pose(moved, relative)) return false;
+  if (moved == relative) return false;
   relative = moved;
   new_constraints_ = true;
   return true;

@@ -136,14 +136,14 @@ OptimizationSummary solve(PoseGraph& graph, const PoseGraphConfig& config, Part 
     problem.AddResidualBlock(cost, robust ? &huber : nullptr, reference, node);
     if (part == Part::frames) problem.SetParameterBlockConstant(node);
   }
+  const double peer_w_xy = config.peer_weight / config.foreign_sigma_xy;
+  const double peer_w_theta = config.peer_weight / config.foreign_sigma_theta;
   if (part != Part::own && config.peer_weight > 0.0)
     for (const PeerConstraint& c : graph.peer) {
       const auto i = static_cast<std::size_t>(c.submap), f = static_cast<std::size_t>(c.frame);
       if (i >= submaps.size() || f >= frames.size()) continue;
-      const double w_xy = config.peer_weight / config.foreign_sigma_xy;
-      const double w_theta = config.peer_weight / config.foreign_sigma_theta;
       auto* cost = new ceres::AutoDiffCostFunction<PeerPoseError, 3, 3, 3>(
-          new PeerPoseError{c.node, c.relative, w_xy, w_theta});
+          new PeerPoseError{c.node, c.relative, peer_w_xy, peer_w_theta});
       problem.AddResidualBlock(cost, &huber, submaps[i].data(), frames[f].data());
       if (part == Part::frames) problem.SetParameterBlockConstant(submaps[i].data());
     }

@@ -225,7 +225,7 @@ void Slam::locate_in_initial_map(const std::vector<ScanPoint>& points, SlamStep&
     if (const auto axis = wall_axis(surface_normals(points, config_.degeneracy), config_.align))
       others.push_back(turned_to_walls(step.prior, *axis));
     for (const Pose2& other : others) {
-      if (same_pose(other, step.prior)) continue;
+      if (other == step.prior) continue;
       const MatchResult found = recovery_.locate(map, points, other);
       const MatchQuality fq = match_quality(map.finest(), points, found.pose);
       if (fq.known_fraction * fq.inlier_ratio > q.known_fraction * q.inlier_ratio) {

@@ -74,7 +74,7 @@ bool LiveMap::still_holds(const std::vector<Entry>& kept, const std::vector<Entr
     const Entry& a = kept[i];
     const Entry& b = now[i];
     if (a.origin != b.origin || a.id != b.id || a.version != b.version) return false;
-    if (same_pose(a.pose, b.pose)) continue;
+    if (a.pose == b.pose) continue;
     // Every cell lies within `reach` of the centre: it moved at most as far
     // as the centre did plus the turn's sweep at that distance.
     const double moved = (b.pose * b.centre - a.pose * a.centre).norm() +

@@ -72,7 +72,7 @@ bool MapKnowledge::move_pieces(const std::string& origin, const std::vector<Piec
   bool moved = false;
   for (MapPiece& piece : it->second.pieces) {
     const auto p = by_id.find(piece.id);
-    if (p == by_id.end() || same_pose(p->second, piece.pose)) continue;
+    if (p == by_id.end() || p->second == piece.pose) continue;
     piece.pose = p->second;
     moved = true;
   }

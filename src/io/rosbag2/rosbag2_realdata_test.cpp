@@ -44,9 +44,6 @@ SensorLog with_float_geometry(SensorLog log) {
 // Scan by scan, bit for bit: stamps, ranges, geometry, odometry, laser offset.
 void expect_same_scans(const SensorLog& expected, const SensorLog& actual) {
   ASSERT_EQ(actual.scans.size(), expected.scans.size());
-  const auto same_pose = [](const Pose2& a, const Pose2& b) {
-    return a.x == b.x && a.y == b.y && a.theta == b.theta;
-  };
   for (std::size_t i = 0; i < expected.scans.size(); ++i) {
     const LaserScan& e = expected.scans[i];
     const LaserScan& a = actual.scans[i];
@@ -58,9 +55,9 @@ void expect_same_scans(const SensorLog& expected, const SensorLog& actual) {
     ASSERT_EQ(a.range_max, e.range_max) << i;
     ASSERT_EQ(a.odometry.has_value(), e.odometry.has_value()) << i;
     if (e.odometry) {
-      ASSERT_TRUE(same_pose(*a.odometry, *e.odometry)) << i;
+      ASSERT_TRUE(*a.odometry == *e.odometry) << i;
     }
-    ASSERT_TRUE(same_pose(a.laser_offset, e.laser_offset)) << i;
+    ASSERT_TRUE(a.laser_offset == e.laser_offset) << i;
   }
 }
 
