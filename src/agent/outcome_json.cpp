@@ -61,7 +61,8 @@ json to_json(const protocol::EncounterOutcome& o) {
             {"a_locates_b", located(e.a_locates_b)},
             {"b_locates_a", located(e.b_locates_a)},
             {"disagreement", {e.disagreement_xy, e.disagreement_theta}},
-            {"wide_moved", {e.wide_moved_xy, e.wide_moved_theta}}}},
+            {"wide_moved", {e.wide_moved_xy, e.wide_moved_theta}},
+            {"settled_by_wide_fit", e.settled_by_wide_fit}}},
           {"self_pose", pose(o.self_pose)},
           {"peer_pose", pose(o.peer_pose)},
           {"self_stamp", o.self_stamp},
@@ -107,6 +108,7 @@ protocol::EncounterOutcome outcome_from_json(const json& j, const std::string& s
     o.estimate.disagreement_theta = e.at("disagreement").at(1).get<double>();
     o.estimate.wide_moved_xy = e.at("wide_moved").at(0).get<double>();
     o.estimate.wide_moved_theta = e.at("wide_moved").at(1).get<double>();
+    o.estimate.settled_by_wide_fit = e.value("settled_by_wide_fit", false);  // absent before 2026-12
     o.self_pose = pose(j.at("self_pose"));
     o.peer_pose = pose(j.at("peer_pose"));
     o.self_stamp = j.at("self_stamp").get<double>();

@@ -86,6 +86,7 @@ nlohmann::json encounter_entry(const EncounterRecord& r) {
   e["snapshot_bytes"] = r.snapshot_bytes;
   e["disagreement"] = {r.estimate.disagreement_xy, r.estimate.disagreement_theta * kRadToDeg};
   e["wide_moved"] = {r.estimate.wide_moved_xy, r.estimate.wide_moved_theta * kRadToDeg};
+  e["settled_by_wide_fit"] = r.estimate.settled_by_wide_fit;
   // Each side's placement of the other robot in its own map.
   e["placements"] = {pose_json(r.estimate.a_locates_b.best.pose), pose_json(r.estimate.b_locates_a.best.pose)};
   e["scores"] = {r.estimate.a_locates_b.best.score, r.estimate.b_locates_a.best.score};

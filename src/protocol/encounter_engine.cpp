@@ -34,6 +34,7 @@ EncounterEngine::EncounterEngine(std::string self, const SwarmConfig& config, Ag
       followers_(config.moves_interval, config.max_followed_encounters),
       repeats_(config.repeat_xy, config.repeat_theta, config.repeat_retries) {
   config_.validate();
+  config_.encounter.wide_fit_settles_only = config_.slam.loop_closure.enabled;
 }
 
 EncounterEngine::~EncounterEngine() = default;

@@ -42,6 +42,12 @@ std::string placement_problem(const RelativePoseResult& r, const EncounterConfig
   return "";
 }
 
+// Two estimates of B's pose within the directions' tolerance.
+bool agree(const Pose2& x, const Pose2& y, const EncounterConfig& config) {
+  return std::hypot(x.x - y.x, x.y - y.y) <= config.agree_xy &&
+         std::abs(normalize_angle(x.theta - y.theta)) <= config.agree_theta;
+}
+
 }  // namespace
 
 PeerPlacement locate_peer(const EncounterView& self, const EncounterView& peer, const EncounterConfig& config,
@@ -94,9 +100,24 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
   std::string problem = placement_problem(e.a_locates_b, config, "A", "B");
   if (problem.empty()) problem = placement_problem(e.b_locates_a, config, "B", "A");
   e.placements_verified = problem.empty();
-  if (problem.empty() && (e.disagreement_xy > config.agree_xy || e.disagreement_theta > config.agree_theta))
+  const bool wide = a_locates_b.wide && b_locates_a.wide;
+  const Pose2 wide_a = wide ? *a_locates_b.wide : Pose2{};  // B's pose by each direction's wide fit
+  const Pose2 wide_b = wide ? (*b_locates_a.wide * a_pose.inverse()).inverse() * b_pose : Pose2{};
+  if (problem.empty() && (e.disagreement_xy > config.agree_xy || e.disagreement_theta > config.agree_theta)) {
+    if (wide && config.wide_fit_settles_only && agree(wide_a, wide_b, config)) {
+      e.b_frame_in_a = e.b_frame_in_a_near = interpolate(wide_a, wide_b, 0.5) * b_pose.inverse();
+      e.accepted = e.settled_by_wide_fit = true;
+      return e;
+    }
     problem = fmt::format("the two directions disagree by {:.2f} m / {:.1f}°", e.disagreement_xy,
                           e.disagreement_theta * 180.0 / std::numbers::pi);
+    if (wide && config.wide_fit_settles_only) {
+      const Pose2 d = between(wide_a, wide_b);
+      problem += fmt::format(" (fitting {:.0f} m of both maps, by {:.2f} m / {:.1f}°)",
+                             config.locate.merge_surroundings_radius, std::hypot(d.x, d.y),
+                             std::abs(d.theta) * 180.0 / std::numbers::pi);
+    }
+  }
   if (!problem.empty()) {
     e.reason = problem;
     return e;
@@ -104,15 +125,13 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
   // Accepted: the mean of the two estimates of B's pose, expressed as a frame transform.
   e.b_frame_in_a = e.b_frame_in_a_near = interpolate(b_by_a, b_by_b, 0.5) * b_pose.inverse();
   e.accepted = true;
-  if (!a_locates_b.wide || !b_locates_a.wide) return e;
+  if (!wide || config.wide_fit_settles_only) return e;
   // Verification above judged the near placements; the wide fit moves them
   // by centimetres. A larger move means the maps disagree with each other
   // (bent between here and their far parts, or the wide fit latched onto the
   // wrong part): the near estimate, right where the robots are, stands.
-  const Pose2 from_a_wide = *a_locates_b.wide * b_pose.inverse();
-  const Pose2 from_b_wide = (*b_locates_a.wide * a_pose.inverse()).inverse();
-  const Pose2 wide = interpolate(from_a_wide * b_pose, from_b_wide * b_pose, 0.5) * b_pose.inverse();
-  const Pose2 moved = between(e.b_frame_in_a * b_pose, wide * b_pose);
+  const Pose2 wide_frame = interpolate(wide_a, wide_b, 0.5) * b_pose.inverse();
+  const Pose2 moved = between(e.b_frame_in_a * b_pose, wide_frame * b_pose);
   e.wide_moved_xy = std::hypot(moved.x, moved.y);
   e.wide_moved_theta = std::abs(normalize_angle(moved.theta));
   if (e.wide_moved_xy > config.agree_xy || e.wide_moved_theta > config.agree_theta) {
@@ -125,7 +144,7 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
     }
     return e;
   }
-  e.b_frame_in_a = wide;
+  e.b_frame_in_a = wide_frame;
   return e;
 }
 

@@ -36,6 +36,12 @@ struct EncounterConfig {
   // wholes, but on real logs without loop closure it refuses most merges
   // between large maps.
   bool reject_bent_maps = false;
+  // With loop closure on, the wide fit moves no transform (closures into the
+  // other robot's submaps line the maps up); it only settles two verified
+  // placements that disagree: when each one's wide fit lands within
+  // agree_xy / agree_theta of the other's, the maps as wholes agree where
+  // one scan could not (the agent sets this from loop_closure.enabled).
+  bool wide_fit_settles_only = false;
 
   void validate() const;  // throws ConfigError naming the field
 };
@@ -77,6 +83,7 @@ struct EncounterEstimate {
   // reject_bent_maps, the encounter is rejected).
   double wide_moved_xy = 0.0;     // m
   double wide_moved_theta = 0.0;  // rad
+  bool settled_by_wide_fit = false;  // the directions disagreed; their wide fits agreed
 };
 
 // One robot's half of an encounter, computed on that robot alone: the other

@@ -125,10 +125,9 @@ EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
     v.recent_map = std::make_shared<const MultiResMap>(slam_.unfinished_map());
   v.surroundings = surroundings_points(slam_.own_map(), v.pose, config.surroundings_radius,
                                         config.surroundings_points);
-  // With loop closure the transform stays the fit where the robots met: the
-  // closures into the other robot's submaps fit the two maps over all the
-  // ground they share, which the wide fit would otherwise approximate once.
-  if (config.merge_surroundings_radius > 0.0 && !slam_.config().loop_closure.enabled)
+  // With loop closure the wide fit only settles directions that disagree
+  // (EncounterConfig::wide_fit_settles_only).
+  if (config.merge_surroundings_radius > 0.0)
     v.wide_surroundings = surroundings_points(slam_.own_map(), v.pose, config.merge_surroundings_radius,
                                               config.merge_surroundings_points);
   return v;

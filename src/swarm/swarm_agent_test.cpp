@@ -201,7 +201,19 @@ TEST(SwarmAgent, WithLoopClosureAPeersScanIsPlacedInTheOwnMapNotInTheMergedOne) 
   const EncounterConfig config;
   const EncounterView self = a.view(config.locate);
   EXPECT_EQ(self.map, &a.slam().own_map());
-  EXPECT_TRUE(self.wide_surroundings.empty()) << "closures, not one wide fit, place the other map";
+  // The wide surroundings go along to settle near misses (the decision
+  // then moves no transform by them): a's own obstacles, not b's.
+  auto wide_in = [&](const MultiResMap& map) {
+    return surroundings_points(map, self.pose, config.locate.merge_surroundings_radius,
+                               config.locate.merge_surroundings_points);
+  };
+  auto same_points = [](const std::vector<ScanPoint>& x, const std::vector<ScanPoint>& y) {
+    return std::equal(x.begin(), x.end(), y.begin(), y.end(),
+                      [](const ScanPoint& p, const ScanPoint& q) { return p.x == q.x && p.y == q.y; });
+  };
+  ASSERT_FALSE(self.wide_surroundings.empty());
+  EXPECT_TRUE(same_points(self.wide_surroundings, wide_in(a.slam().own_map())));
+  EXPECT_FALSE(same_points(self.wide_surroundings, wide_in(a.slam().map())));
   // The unfinished submaps come along (the peer is placed there too): a's
   // own evidence only, the newest of it.
   ASSERT_NE(self.recent_map, nullptr);
