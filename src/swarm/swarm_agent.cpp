@@ -19,6 +19,14 @@ const MapLayer& own_layer_of(const MapSnapshot& saved, const std::string& self) 
   return none;
 }
 
+// The first submap id a resumed robot may give out: its peers hold the saved
+// pieces under theirs, and the saved map comes back as one new submap.
+std::int32_t next_piece_id(const MapLayer& saved) {
+  std::int32_t next = 0;
+  for (const MapPiece& p : saved.pieces) next = std::max(next, p.id + 1);
+  return next;
+}
+
 }  // namespace
 
 SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
@@ -36,7 +44,8 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnap
       slam_(config, own_layer_of(saved, name_).map ? layer_evidence(own_layer_of(saved, name_)) : MultiResMap(config.map), pose,
             MapUse::extend, background, odometry),
       knowledge_(name_),
-      version_base_(own_layer_of(saved, name_).version) {
+      version_base_(own_layer_of(saved, name_).version),
+      piece_id_base_(next_piece_id(own_layer_of(saved, name_))) {
   knowledge_.restore(saved);
   register_layers();
   if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
@@ -90,7 +99,7 @@ MapMoves SwarmAgent::moves(const std::string& peer, const std::vector<TieScan>& 
   if (const auto it = frame_ids_.find(peer); it != frame_ids_.end())
     m.closures = slam_.loop_closer().closures_into(it->second, max_closures);
   m.revision = graph_revision();
-  for (const MapPiece& p : slam_.finished_pieces()) m.pieces.push_back({p.id, p.pose});
+  for (const MapPiece& p : own_pieces()) m.pieces.push_back({p.id, p.pose});
   for (const TieScan& t : ties)
     if (t.scan_index < slam_.scans_processed())
       m.ties.push_back({t.encounter, t.offered, slam_.scan_pose(t.scan_index)});
@@ -110,9 +119,25 @@ bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
   if (moved) register_layers();
   if (const auto it = frame_ids_.find(origin); it != frame_ids_.end()) {
     for (const TieMove& t : moves.ties) moved = slam_.move_encounter(it->second, t.encounter, t.then, t.now) || moved;
-    slam_.set_peer_closures(it->second, moves.closures);
+    slam_.set_peer_closures(it->second, closures_into_this_run(moves.closures));
   }
   return moved;
+}
+
+std::vector<MapPiece> SwarmAgent::own_pieces() const {
+  std::vector<MapPiece> pieces = slam_.finished_pieces();
+  for (MapPiece& p : pieces) p.id += piece_id_base_;
+  return pieces;
+}
+
+std::vector<PeerClosure> SwarmAgent::closures_into_this_run(const std::vector<PeerClosure>& told) const {
+  std::vector<PeerClosure> ours;
+  for (PeerClosure c : told) {
+    if (c.submap < piece_id_base_) continue;  // a submap of an earlier run, now part of submap 0
+    c.submap -= piece_id_base_;
+    ours.push_back(c);
+  }
+  return ours;
 }
 
 EncounterView SwarmAgent::view(const RelativePoseConfig& config) const {
@@ -149,7 +174,7 @@ MapLayer SwarmAgent::own_layer() const {
     return MapLayer{name_, own_copy_version_, Pose2{}, 0, own_copy_, {}};
   }
   return MapLayer{name_, own_version(), Pose2{}, 0, std::make_shared<const MultiResMap>(slam_.unfinished_map()),
-                  slam_.finished_pieces()};
+                  own_pieces()};
 }
 
 std::optional<LiveMapParts> SwarmAgent::live_map_parts() const {

@@ -145,6 +145,10 @@ class SwarmAgent {
   int frame_id(const std::string& origin);
   void register_layers();
   void sync_frames();
+  // Our finished submaps as peers know them (ids from piece_id_base_), and
+  // peers' closures into them as our loop closer knows them.
+  std::vector<MapPiece> own_pieces() const;
+  std::vector<PeerClosure> closures_into_this_run(const std::vector<PeerClosure>& told) const;
 
   std::string name_;
   Slam slam_;
@@ -152,6 +156,11 @@ class SwarmAgent {
   std::map<std::string, int> frame_ids_;  // origin -> frame id in our graph
   std::optional<LaserScan> last_scan_;
   std::size_t version_base_ = 0;  // own map version when this run began (resumed)
+  // Submap ids peers know: this run's submap k is piece_id_base_ + k. A
+  // resumed robot goes on after the saved pieces, which peers still hold
+  // (reused ids would stand for other evidence, and their closures into
+  // the saved submaps would land in new ones).
+  std::int32_t piece_id_base_ = 0;
   MergeSchedule schedule_;
   std::vector<LayerVersion> working_layers_;
   const MultiResMap& own_copy() const;

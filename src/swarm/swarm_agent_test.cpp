@@ -288,5 +288,43 @@ TEST(SwarmAgent, AMapThatLoopClosingMovedAfterTheMergeIsFollowed) {
   EXPECT_FALSE(plain.follow("b", moves));
 }
 
+// A robot resumed from a checkpoint gives its submaps ids after the saved
+// ones: its peers still hold those, and a reused id would stand for other
+// evidence. Peers' closures into the saved submaps (now one) are left out.
+TEST(SwarmAgent, AResumedRobotGivesItsSubmapsNewIds) {
+  const SimulatedRun rb = test::long_loop(1.3, 1), ra = test::lap(0, 1);
+  SwarmAgent b("b", with_loop_closure());
+  const std::size_t half = rb.log.scans.size() / 2;
+  for (std::size_t i = 0; i < half; ++i) b.process(rb.log.scans[i]);
+  const MapSnapshot saved = b.snapshot();
+  const MapLayer* saved_own = nullptr;
+  for (const MapLayer& l : saved.layers)
+    if (l.origin == "b") saved_own = &l;
+  ASSERT_NE(saved_own, nullptr);
+  ASSERT_GE(saved_own->pieces.size(), 2u);
+  std::int32_t next = 0;
+  for (const MapPiece& p : saved_own->pieces) next = std::max(next, p.id + 1);
+
+  SwarmAgent resumed("b", with_loop_closure(), saved, b.slam().pose());
+  for (std::size_t i = half; i < rb.log.scans.size(); ++i) resumed.process(rb.log.scans[i]);
+  resumed.finish();
+  const MapSnapshot now = resumed.snapshot();
+  std::vector<std::int32_t> ids;
+  for (const MapLayer& l : now.layers)
+    if (l.origin == "b")
+      for (const MapPiece& p : l.pieces) ids.push_back(p.id);
+  ASSERT_GE(ids.size(), 2u);  // the saved map as one submap, and new ones
+  EXPECT_EQ(*std::min_element(ids.begin(), ids.end()), next);
+  for (const PiecePose& p : resumed.moves("a", {}, 4096).pieces) EXPECT_GE(p.id, next);
+
+  SwarmAgent a("a", with_loop_closure());
+  for (std::size_t i = 0; i < 60; ++i) a.process(ra.log.scans[i]);
+  ASSERT_TRUE(resumed.merge(a.snapshot(), Pose2(1.0, 2.0, 0.3)));
+  MapMoves told;
+  told.closures = {{next - 1, Pose2(), Pose2()}, {next, Pose2(), Pose2()}, {next + 1, Pose2(), Pose2()}};
+  resumed.follow("a", told);
+  EXPECT_EQ(resumed.slam().loop_closer().peer_closures(), 2u);
+}
+
 }  // namespace
 }  // namespace dsswarm
