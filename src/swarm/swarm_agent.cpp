@@ -46,6 +46,7 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnap
       knowledge_(name_),
       version_base_(own_layer_of(saved, name_).version),
       piece_id_base_(next_piece_id(own_layer_of(saved, name_))) {
+  for (const MapPiece& p : own_layer_of(saved, name_).pieces) saved_pieces_[p.id] = p.pose;
   knowledge_.restore(saved);
   register_layers();
   if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
@@ -133,8 +134,15 @@ std::vector<MapPiece> SwarmAgent::own_pieces() const {
 std::vector<PeerClosure> SwarmAgent::closures_into_this_run(const std::vector<PeerClosure>& told) const {
   std::vector<PeerClosure> ours;
   for (PeerClosure c : told) {
-    if (c.submap < piece_id_base_) continue;  // a submap of an earlier run, now part of submap 0
-    c.submap -= piece_id_base_;
+    if (c.submap < piece_id_base_) {
+      // A submap of an earlier run: the saved map, now submap 0, holds it at its saved pose.
+      const auto saved = saved_pieces_.find(c.submap);
+      if (saved == saved_pieces_.end()) continue;
+      c.in_cells = saved->second * c.in_cells;
+      c.submap = 0;
+    } else {
+      c.submap -= piece_id_base_;
+    }
     ours.push_back(c);
   }
   return ours;

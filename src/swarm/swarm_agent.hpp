@@ -146,7 +146,8 @@ class SwarmAgent {
   void register_layers();
   void sync_frames();
   // Our finished submaps as peers know them (ids from piece_id_base_), and
-  // peers' closures into them as our loop closer knows them.
+  // peers' closures into them as our loop closer knows them (those into a
+  // saved piece go into submap 0, the saved map, where that piece lies).
   std::vector<MapPiece> own_pieces() const;
   std::vector<PeerClosure> closures_into_this_run(const std::vector<PeerClosure>& told) const;
 
@@ -161,6 +162,7 @@ class SwarmAgent {
   // (reused ids would stand for other evidence, and their closures into
   // the saved submaps would land in new ones).
   std::int32_t piece_id_base_ = 0;
+  std::map<std::int32_t, Pose2> saved_pieces_;  // resumed: the saved pieces' poses in the saved map
   MergeSchedule schedule_;
   std::vector<LayerVersion> working_layers_;
   const MultiResMap& own_copy() const;

@@ -290,7 +290,7 @@ TEST(SwarmAgent, AMapThatLoopClosingMovedAfterTheMergeIsFollowed) {
 
 // A robot resumed from a checkpoint gives its submaps ids after the saved
 // ones: its peers still hold those, and a reused id would stand for other
-// evidence. Peers' closures into the saved submaps (now one) are left out.
+// evidence. Peers' closures into the saved submaps go into the saved map.
 TEST(SwarmAgent, AResumedRobotGivesItsSubmapsNewIds) {
   const SimulatedRun rb = test::long_loop(1.3, 1), ra = test::lap(0, 1);
   SwarmAgent b("b", with_loop_closure());
@@ -321,9 +321,11 @@ TEST(SwarmAgent, AResumedRobotGivesItsSubmapsNewIds) {
   for (std::size_t i = 0; i < 60; ++i) a.process(ra.log.scans[i]);
   ASSERT_TRUE(resumed.merge(a.snapshot(), Pose2(1.0, 2.0, 0.3)));
   MapMoves told;
-  told.closures = {{next - 1, Pose2(), Pose2()}, {next, Pose2(), Pose2()}, {next + 1, Pose2(), Pose2()}};
+  // Into a saved piece (now in submap 0), two new ones, and one the robot never gave out.
+  told.closures = {{next - 1, Pose2(), Pose2()}, {next, Pose2(), Pose2()}, {next + 1, Pose2(), Pose2()},
+                   {-1, Pose2(), Pose2()}};
   resumed.follow("a", told);
-  EXPECT_EQ(resumed.slam().loop_closer().peer_closures(), 2u);
+  EXPECT_EQ(resumed.slam().loop_closer().peer_closures(), 3u);
 }
 
 }  // namespace
