@@ -49,6 +49,7 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnap
   for (const MapPiece& p : own_layer_of(saved, name_).pieces) saved_pieces_[p.id] = p.pose;
   knowledge_.restore(saved);
   register_layers();
+  untied_since_resume_ = loop_closing() && knowledge_.size() > 0;
   if (knowledge_.size() > 0) slam_.replace_working_map(compose_working_map(slam_.own_map(), knowledge_.layers()));
   working_layers_ = layer_versions(knowledge_.layers());
 }
@@ -57,6 +58,7 @@ SlamStep SwarmAgent::process(const LaserScan& scan) {
   last_scan_ = scan;
   const std::size_t before = own_version();
   SlamStep step = slam_.process(scan);
+  if (untied_since_resume_) tie_saved_frames(step.pose);
   if (own_version() != before && schedule_.keeps_scans())
     schedule_.inserted(own_version(), scan.timestamp, step.pose, scan.laser_offset,
                        scan_to_points(scan, slam_.config().points));
@@ -123,6 +125,21 @@ bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
     slam_.set_peer_closures(it->second, closures_into_this_run(moves.closures));
   }
   return moved;
+}
+
+// The frames the checkpoint knew, where it knew them, tied to our first
+// node: the graph then places them again (their closures weigh at once),
+// as the encounters that placed them before the crash did.
+void SwarmAgent::tie_saved_frames(const Pose2& pose) {
+  untied_since_resume_ = false;
+  const ForeignMaps& foreign = slam_.loop_closer().foreign();
+  for (const MapLayer& l : knowledge_.layers()) {
+    const int g = foreign.graph_index(frame_id(l.origin));
+    if (g >= 0 && foreign.tied()[static_cast<std::size_t>(g)]) continue;
+    slam_.add_encounter(frame_id(l.origin), slam_.scans_processed() - 1, pose, l.origin_in_holder);
+    const int now = foreign.graph_index(frame_id(l.origin));
+    untied_since_resume_ = untied_since_resume_ || now < 0 || !foreign.tied()[static_cast<std::size_t>(now)];
+  }
 }
 
 std::vector<MapPiece> SwarmAgent::own_pieces() const {

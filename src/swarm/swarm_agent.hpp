@@ -149,6 +149,7 @@ class SwarmAgent {
   // peers' closures into them as our loop closer knows them (those into a
   // saved piece go into submap 0, the saved map, where that piece lies).
   std::vector<MapPiece> own_pieces() const;
+  void tie_saved_frames(const Pose2& pose);  // resumed: at the first node that takes them
   std::vector<PeerClosure> closures_into_this_run(const std::vector<PeerClosure>& told) const;
 
   std::string name_;
@@ -163,6 +164,7 @@ class SwarmAgent {
   // the saved submaps would land in new ones).
   std::int32_t piece_id_base_ = 0;
   std::map<std::int32_t, Pose2> saved_pieces_;  // resumed: the saved pieces' poses in the saved map
+  bool untied_since_resume_ = false;  // resumed: frames known but not yet tied into our graph
   MergeSchedule schedule_;
   std::vector<LayerVersion> working_layers_;
   const MultiResMap& own_copy() const;

@@ -328,5 +328,30 @@ TEST(SwarmAgent, AResumedRobotGivesItsSubmapsNewIds) {
   EXPECT_EQ(resumed.slam().loop_closer().peer_closures(), 3u);
 }
 
+// The frames a checkpoint knew are tied into the resumed robot's new graph
+// at its first node, where the checkpoint had them: the closures it is told
+// weigh at once, not only after its next encounter.
+TEST(SwarmAgent, AResumedRobotTiesTheFramesItKnew) {
+  const SimulatedRun rb = test::long_loop(1.3, 1), ra = test::lap(0, 1);
+  SwarmAgent a("a", with_loop_closure()), b("b", with_loop_closure());
+  for (std::size_t i = 0; i < 60; ++i) a.process(ra.log.scans[i]);
+  const std::size_t half = rb.log.scans.size() / 2;
+  for (std::size_t i = 0; i < half; ++i) b.process(rb.log.scans[i]);
+  const Pose2 a_in_b(1.0, 2.0, 0.3);
+  ASSERT_TRUE(b.merge(a.snapshot(), a_in_b));
+
+  SwarmAgent resumed("b", with_loop_closure(), b.snapshot(), b.slam().pose());
+  const ForeignMaps& foreign = resumed.slam().loop_closer().foreign();
+  ASSERT_EQ(foreign.tied().size(), 1u);
+  EXPECT_FALSE(foreign.tied()[0]);
+  for (std::size_t i = half; i < half + 20; ++i) resumed.process(rb.log.scans[i]);
+  EXPECT_TRUE(foreign.tied()[0]);
+  resumed.finish();
+  const Pose2 held = resumed.knowledge().find("a")->origin_in_holder;
+  EXPECT_NEAR(held.x, a_in_b.x, 0.05);
+  EXPECT_NEAR(held.y, a_in_b.y, 0.05);
+  EXPECT_NEAR(normalize_angle(held.theta - a_in_b.theta), 0.0, 0.01);
+}
+
 }  // namespace
 }  // namespace dsswarm
