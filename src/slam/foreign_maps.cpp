@@ -53,11 +53,14 @@ std::vector<std::size_t> ForeignMaps::set(int frame, const Pose2& frame_pose, co
   const int g = index_of(frame);
   if (!tied_[static_cast<std::size_t>(g)]) poses_[static_cast<std::size_t>(g)] = frame_pose;
   std::vector<std::size_t> added;
+  for (ForeignPieceInfo& held : pieces_)
+    if (held.frame == g) held.current = false;
   for (const ForeignPiece& p : pieces) {
     if (!p.map) throw ConfigError("ForeignMaps::set: a piece without evidence");
     const auto key = std::make_pair(frame, p.id);
     if (const auto it = piece_index_.find(key); it != piece_index_.end()) {
       pieces_[it->second].piece.pose = p.pose;
+      pieces_[it->second].current = true;
       continue;
     }
     ForeignPieceInfo info{g, p};

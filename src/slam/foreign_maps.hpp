@@ -32,6 +32,9 @@ struct ForeignPieceInfo {
   ForeignPiece piece;
   Eigen::Vector2d centre{0.0, 0.0};  // of its evidence, in its cells' frame
   double radius = 0.0;               // m from the centre that holds all its evidence
+  // In the robot's latest list: a robot resumed from its checkpoint sends its
+  // saved pieces again as one, and the old ones are no longer searched.
+  bool current = true;
 };
 
 // A closure measured in a piece that has moved since (that robot closed a
@@ -45,7 +48,8 @@ class ForeignMaps {
   explicit ForeignMaps(const MapConfig& map) : map_(map) {}
 
   // Registers or updates robot `frame`'s map: its finished pieces (a piece
-  // already held keeps its evidence and takes the new pose) and, until our
+  // already held keeps its evidence and takes the new pose; one held but
+  // not in the list is no longer current) and, until our
   // graph has constraints on the frame, its pose in ours. Returns the
   // indices (into pieces()) of pieces not held before.
   std::vector<std::size_t> set(int frame, const Pose2& frame_pose, const std::vector<ForeignPiece>& pieces);

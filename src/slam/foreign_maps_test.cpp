@@ -135,6 +135,13 @@ TEST(ForeignMaps, PiecesAlreadyHeldKeepTheirEvidenceAndTakeTheNewPose) {
   EXPECT_EQ(maps.pieces()[added[0]].piece.id, 2);
   EXPECT_DOUBLE_EQ(maps.pieces()[1].piece.pose.x, 2.5);
   EXPECT_NEAR(maps.pieces()[0].centre.x(), 1.6, 1e-9);  // the tile holding cell (3, 4): [0, 3.2) m
+  // Piece 0 is no longer in robot 1's list (it resumed, its saved map now one
+  // piece): held, not searched. Sent again, it is current again.
+  EXPECT_FALSE(maps.pieces()[0].current);
+  EXPECT_TRUE(maps.pieces()[1].current);
+  EXPECT_TRUE(maps.pieces()[2].current);
+  maps.set(1, Pose2(1, 0, 0), {{0, Pose2(), frozen}, {1, Pose2(2.5, 0, 0.1), frozen}, {2, Pose2(), frozen}});
+  EXPECT_TRUE(maps.pieces()[0].current);
   // Until an encounter ties it into the graph, the frame takes the caller's pose.
   maps.set(1, Pose2(3, 0, 0), {});
   EXPECT_DOUBLE_EQ(maps.frame_pose(1).x, 3.0);

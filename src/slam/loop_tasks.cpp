@@ -55,7 +55,8 @@ double distance_to_piece(const RoundInput& in, int node, std::size_t k) {
 std::vector<std::size_t> nearby_pieces(const RoundInput& in, int node, const LoopClosureConfig& config) {
   std::vector<std::pair<double, std::size_t>> near;
   for (std::size_t k = 0; k < in.foreign.size(); ++k)
-    if (const double d = distance_to_piece(in, node, k); d <= config.max_distance) near.push_back({d, k});
+    if (const double d = distance_to_piece(in, node, k); in.foreign[k].current && d <= config.max_distance)
+      near.push_back({d, k});
   std::sort(near.begin(), near.end());
   std::vector<std::size_t> out;
   for (const auto& [d, k] : near) {
@@ -105,6 +106,7 @@ std::vector<Task> tasks_for(const RoundInput& in, const LoopClosureConfig& confi
   }
   for (const RoundInput::Backlog& b : in.backlog) {
     const ForeignPieceInfo& piece = in.foreign[b.piece];
+    if (!piece.current) continue;
     tasks.push_back({b.node, {true, static_cast<int>(b.piece)}, foreign_window(in, b.node, piece, config),
                      b.points.get(), between(piece_global(in, piece), in.graph.nodes[static_cast<std::size_t>(b.node)])});
   }
