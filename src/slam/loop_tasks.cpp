@@ -54,9 +54,10 @@ double distance_to_piece(const RoundInput& in, int node, std::size_t k) {
 // Other robots' pieces worth searching for `node`: within max_distance, nearest first.
 std::vector<std::size_t> nearby_pieces(const RoundInput& in, int node, const LoopClosureConfig& config) {
   std::vector<std::pair<double, std::size_t>> near;
-  for (std::size_t k = 0; k < in.foreign.size(); ++k)
-    if (const double d = distance_to_piece(in, node, k); in.foreign[k].current && d <= config.max_distance)
-      near.push_back({d, k});
+  for (std::size_t k = 0; k < in.foreign.size(); ++k) {
+    if (!in.foreign[k].current) continue;  // no longer sent by its robot: not searched
+    if (const double d = distance_to_piece(in, node, k); d <= config.max_distance) near.push_back({d, k});
+  }
   std::sort(near.begin(), near.end());
   std::vector<std::size_t> out;
   for (const auto& [d, k] : near) {

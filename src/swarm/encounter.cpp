@@ -42,10 +42,16 @@ std::string placement_problem(const RelativePoseResult& r, const EncounterConfig
   return "";
 }
 
-// Two estimates of B's pose within the directions' tolerance.
-bool agree(const Pose2& x, const Pose2& y, const EncounterConfig& config) {
-  return std::hypot(x.x - y.x, x.y - y.y) <= config.agree_xy &&
-         std::abs(normalize_angle(x.theta - y.theta)) <= config.agree_theta;
+// How far apart two estimates of B's pose are, and whether that is beyond
+// what the two directions may disagree by.
+struct Apart {
+  double xy = 0.0, theta = 0.0;  // m, rad
+};
+Apart apart(const Pose2& x, const Pose2& y) {
+  return {std::hypot(x.x - y.x, x.y - y.y), std::abs(normalize_angle(x.theta - y.theta))};
+}
+bool beyond(const Apart& d, const EncounterConfig& config) {
+  return d.xy > config.agree_xy || d.theta > config.agree_theta;
 }
 
 }  // namespace
@@ -94,8 +100,9 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
   // Compare where each puts robot B: the frames' origins may be far away,
   // where a small angle error looks like a large offset.
   const Pose2 b_by_a = e.b_frame_by_a * b_pose, b_by_b = e.b_frame_by_b * b_pose;
-  e.disagreement_xy = std::hypot(b_by_a.x - b_by_b.x, b_by_a.y - b_by_b.y);
-  e.disagreement_theta = std::abs(normalize_angle(b_by_a.theta - b_by_b.theta));
+  const Apart directions = apart(b_by_a, b_by_b);
+  e.disagreement_xy = directions.xy;
+  e.disagreement_theta = directions.theta;
 
   std::string problem = placement_problem(e.a_locates_b, config, "A", "B");
   if (problem.empty()) problem = placement_problem(e.b_locates_a, config, "B", "A");
@@ -103,20 +110,19 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
   const bool wide = a_locates_b.wide && b_locates_a.wide;
   const Pose2 wide_a = wide ? *a_locates_b.wide : Pose2{};  // B's pose by each direction's wide fit
   const Pose2 wide_b = wide ? (*b_locates_a.wide * a_pose.inverse()).inverse() * b_pose : Pose2{};
-  if (problem.empty() && (e.disagreement_xy > config.agree_xy || e.disagreement_theta > config.agree_theta)) {
-    if (wide && config.wide_fit_settles_only && agree(wide_a, wide_b, config)) {
+  const Apart wide_fits = apart(wide_a, wide_b);
+  if (problem.empty() && beyond(directions, config)) {
+    if (wide && config.wide_fit_settles_only && !beyond(wide_fits, config)) {
       e.b_frame_in_a = e.b_frame_in_a_near = interpolate(wide_a, wide_b, 0.5) * b_pose.inverse();
       e.accepted = e.settled_by_wide_fit = true;
       return e;
     }
     problem = fmt::format("the two directions disagree by {:.2f} m / {:.1f}°", e.disagreement_xy,
                           e.disagreement_theta * 180.0 / std::numbers::pi);
-    if (wide && config.wide_fit_settles_only) {
-      const Pose2 d = between(wide_a, wide_b);
+    if (wide && config.wide_fit_settles_only)
       problem += fmt::format(" (fitting {:.0f} m of both maps, by {:.2f} m / {:.1f}°)",
-                             config.locate.merge_surroundings_radius, std::hypot(d.x, d.y),
-                             std::abs(d.theta) * 180.0 / std::numbers::pi);
-    }
+                             config.locate.merge_surroundings_radius, wide_fits.xy,
+                             wide_fits.theta * 180.0 / std::numbers::pi);
   }
   if (!problem.empty()) {
     e.reason = problem;
@@ -134,7 +140,7 @@ EncounterEstimate decide_encounter(const Pose2& a_pose, const Pose2& b_pose, con
   const Pose2 moved = between(e.b_frame_in_a * b_pose, wide_frame * b_pose);
   e.wide_moved_xy = std::hypot(moved.x, moved.y);
   e.wide_moved_theta = std::abs(normalize_angle(moved.theta));
-  if (e.wide_moved_xy > config.agree_xy || e.wide_moved_theta > config.agree_theta) {
+  if (beyond({e.wide_moved_xy, e.wide_moved_theta}, config)) {
     if (config.reject_bent_maps) {
       e.accepted = false;
       e.reason = fmt::format(

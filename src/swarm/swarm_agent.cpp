@@ -19,14 +19,6 @@ const MapLayer& own_layer_of(const MapSnapshot& saved, const std::string& self) 
   return none;
 }
 
-// The first submap id a resumed robot may give out: its peers hold the saved
-// pieces under theirs, and the saved map comes back as one new submap.
-std::int32_t next_piece_id(const MapLayer& saved) {
-  std::int32_t next = 0;
-  for (const MapPiece& p : saved.pieces) next = std::max(next, p.id + 1);
-  return next;
-}
-
 }  // namespace
 
 SlamConfig agent_slam_config(const SlamConfig& swarm, const std::string& name) {
@@ -44,9 +36,11 @@ SwarmAgent::SwarmAgent(std::string name, const SlamConfig& config, const MapSnap
       slam_(config, own_layer_of(saved, name_).map ? layer_evidence(own_layer_of(saved, name_)) : MultiResMap(config.map), pose,
             MapUse::extend, background, odometry),
       knowledge_(name_),
-      version_base_(own_layer_of(saved, name_).version),
-      piece_id_base_(next_piece_id(own_layer_of(saved, name_))) {
+      version_base_(own_layer_of(saved, name_).version) {
   for (const MapPiece& p : own_layer_of(saved, name_).pieces) saved_pieces_[p.id] = p.pose;
+  // The first id after the saved ones: its peers hold those, and the saved
+  // map comes back as one new submap.
+  if (!saved_pieces_.empty()) piece_id_base_ = std::max(0, saved_pieces_.rbegin()->first + 1);
   knowledge_.restore(saved);
   register_layers();
   untied_since_resume_ = loop_closing() && knowledge_.size() > 0;
@@ -131,14 +125,17 @@ bool SwarmAgent::follow(const std::string& origin, const MapMoves& moves) {
 // node: the graph then places them again (their closures weigh at once),
 // as the encounters that placed them before the crash did.
 void SwarmAgent::tie_saved_frames(const Pose2& pose) {
-  untied_since_resume_ = false;
   const ForeignMaps& foreign = slam_.loop_closer().foreign();
+  const auto tied = [&](int frame) {
+    const int g = foreign.graph_index(frame);
+    return g >= 0 && foreign.tied()[static_cast<std::size_t>(g)];
+  };
+  untied_since_resume_ = false;
   for (const MapLayer& l : knowledge_.layers()) {
-    const int g = foreign.graph_index(frame_id(l.origin));
-    if (g >= 0 && foreign.tied()[static_cast<std::size_t>(g)]) continue;
-    slam_.add_encounter(frame_id(l.origin), slam_.scans_processed() - 1, pose, l.origin_in_holder);
-    const int now = foreign.graph_index(frame_id(l.origin));
-    untied_since_resume_ = untied_since_resume_ || now < 0 || !foreign.tied()[static_cast<std::size_t>(now)];
+    const int frame = frame_id(l.origin);
+    if (tied(frame)) continue;
+    slam_.add_encounter(frame, slam_.scans_processed() - 1, pose, l.origin_in_holder);
+    untied_since_resume_ = untied_since_resume_ || !tied(frame);  // no node yet: at the next scan
   }
 }
 

@@ -149,8 +149,8 @@ class SwarmAgent {
   // peers' closures into them as our loop closer knows them (those into a
   // saved piece go into submap 0, the saved map, where that piece lies).
   std::vector<MapPiece> own_pieces() const;
-  void tie_saved_frames(const Pose2& pose);  // resumed: at the first node that takes them
   std::vector<PeerClosure> closures_into_this_run(const std::vector<PeerClosure>& told) const;
+  void tie_saved_frames(const Pose2& pose);  // resumed: at the first node that takes them
 
   std::string name_;
   Slam slam_;
